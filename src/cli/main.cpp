@@ -1,0 +1,34 @@
+// inim: one program, one subcommand per job. See README.md for a tour.
+#include <cstdio>
+#include <exception>
+
+#include "cli/commands.h"
+#include "core/error.h"
+
+namespace inim::cli {
+void addRunOptions(CLI::App* cmd, RunOptions& opts) {
+  cmd->add_option("--seed", opts.seed, "Random seed; output depends on it only")->capture_default_str();
+  cmd->add_option("--threads", opts.threads, "Worker threads (0 = all cores)")->capture_default_str();
+}
+}  // namespace inim::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"inim: spectral simulator for integral-imaging light-field displays"};
+  app.set_version_flag("--version", std::string("inim ") + INIM_VERSION);
+  app.require_subcommand(1);
+  inim::cli::addRenderCommand(app);
+  inim::cli::addBenchCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? 0 : inim::kExitBadInput;
+  } catch (const inim::InputError& e) {
+    std::fprintf(stderr, "inim: error: %s\n", e.what());
+    return inim::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "inim: failed: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,67 @@
+#include "core/image.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include "core/error.h"
+
+namespace inim {
+
+int Image::channelIndex(const std::string& name) const {
+  auto it = std::find(channels.begin(), channels.end(), name);
+  return it == channels.end() ? -1 : int(it - channels.begin());
+}
+
+void writeImage(const Image& img, const std::string& path) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw std::runtime_error("cannot create image writer for " + path + ": " + OIIO::geterror());
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  bool isExr = ext == ".exr";
+  OIIO::ImageSpec spec(img.width, img.height, img.numChannels(),
+                       isExr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  spec.channelnames = img.channels;
+  int a = img.channelIndex("A");
+  spec.alpha_channel = a;
+  if (isExr) spec.attribute("compression", "zip");
+  if (!out->open(path, spec)) throw std::runtime_error("cannot open " + path + ": " + out->geterror());
+  bool ok;
+  if (isExr) {
+    ok = out->write_image(OIIO::TypeDesc::FLOAT, img.data.data());
+  } else {
+    std::vector<unsigned char> bytes(img.data.size());
+    for (size_t i = 0; i < bytes.size(); ++i) {
+      float v = std::isfinite(img.data[i]) ? std::clamp(img.data[i], 0.0f, 1.0f) : 0.0f;
+      bytes[i] = static_cast<unsigned char>(std::lround(v * 255.0f));
+    }
+    ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+  }
+  if (!ok || !out->close()) throw std::runtime_error("cannot write " + path + ": " + out->geterror());
+}
+
+Image readImage(const std::string& path, bool rejectNonFinite) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw InputError(path, "", "", "a readable image (" + OIIO::geterror() + ")");
+  const OIIO::ImageSpec& spec = in->spec();
+  Image img(spec.width, spec.height, spec.channelnames);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data()))
+    throw InputError(path, "", "", "a readable image (" + in->geterror() + ")");
+  in->close();
+  if (rejectNonFinite) {
+    for (size_t i = 0; i < img.data.size(); ++i)
+      if (!std::isfinite(img.data[i])) {
+        size_t px = i / img.channels.size();
+        throw InputError(path, "pixel (" + std::to_string(px % img.width) + ", " +
+                                   std::to_string(px / img.width) + ") channel " +
+                                   img.channels[i % img.channels.size()],
+                         std::isnan(img.data[i]) ? "NaN" : "Inf", "finite values");
+      }
+  }
+  return img;
+}
+
+}  // namespace inim

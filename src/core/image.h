@@ -1,0 +1,29 @@
+#pragma once
+// A float image with named channels, and reading/writing through OpenImageIO.
+#include <string>
+#include <vector>
+
+namespace inim {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::string> channels;  // e.g. {"R","G","B"} or {"R","G","B","A","Z"}
+  std::vector<float> data;            // row-major, row 0 = top, channels interleaved
+
+  Image() = default;
+  Image(int w, int h, std::vector<std::string> ch)
+      : width(w), height(h), channels(std::move(ch)), data(size_t(w) * h * channels.size(), 0.0f) {}
+  int numChannels() const { return int(channels.size()); }
+  float& at(int x, int y, int c) { return data[(size_t(y) * width + x) * channels.size() + c]; }
+  float at(int x, int y, int c) const { return data[(size_t(y) * width + x) * channels.size() + c]; }
+  int channelIndex(const std::string& name) const;  // -1 if absent
+};
+
+// Writes EXR (float) or PNG/JPEG/TIFF (8-bit, values in [0,1] already encoded) by extension.
+// Throws std::runtime_error on failure.
+void writeImage(const Image& img, const std::string& path);
+// Reads any image OIIO knows. `rejectNonFinite`: throw InputError naming the file if any
+// value is NaN or Inf.
+Image readImage(const std::string& path, bool rejectNonFinite = true);
+
+}  // namespace inim

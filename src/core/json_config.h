@@ -1,0 +1,69 @@
+#pragma once
+// Strict JSON config access: every read names its file and key path, every key must be
+// consumed, so a misspelt key is an error instead of a silently ignored setting.
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace inim {
+
+using Json = nlohmann::json;
+
+// Parses a JSON file; throws InputError naming the file (and line/column) on failure.
+Json readJsonFile(const std::string& path);
+
+class JsonObject {
+ public:
+  // `path` is the key path of this object inside `file`, e.g. "objects[3].material".
+  JsonObject(const Json& j, std::string file, std::string path);
+
+  bool has(const std::string& key) const;
+  const Json& raw(const std::string& key) const;  // throws if missing
+
+  double number(const std::string& key) const;
+  double number(const std::string& key, double fallback) const;
+  double positive(const std::string& key) const;  // > 0
+  double positive(const std::string& key, double fallback) const;
+  int integer(const std::string& key) const;
+  int integer(const std::string& key, int fallback) const;
+  bool boolean(const std::string& key, bool fallback) const;
+  std::string string(const std::string& key) const;
+  std::string string(const std::string& key, const std::string& fallback) const;
+  // One of `allowed`, else an error listing them.
+  std::string choice(const std::string& key, const std::vector<std::string>& allowed) const;
+  std::string choice(const std::string& key, const std::vector<std::string>& allowed,
+                     const std::string& fallback) const;
+  Vec3d vec3(const std::string& key) const;
+  Vec3d vec3(const std::string& key, const Vec3d& fallback) const;
+  std::vector<double> numbers(const std::string& key) const;
+  JsonObject object(const std::string& key) const;
+  std::vector<JsonObject> objects(const std::string& key) const;  // an array of objects
+  // A file path relative to this config file's folder.
+  std::string path(const std::string& key) const;
+
+  // Throws for any key not read so far (the first, alphabetically), naming known keys.
+  void rejectUnknown() const;
+  // Throws an InputError for `key` with the given value text and expectation.
+  [[noreturn]] void fail(const std::string& key, const std::string& value,
+                         const std::string& expected) const;
+
+  const std::string& file() const { return file_; }
+  const std::string& keyPath() const { return path_; }
+  std::string keyPath(const std::string& key) const;
+  const Json& json() const { return j_; }
+
+ private:
+  const Json& get(const std::string& key) const;
+  const Json& j_;
+  std::string file_, path_;
+  mutable std::set<std::string> used_;   // keys present and read
+  mutable std::set<std::string> asked_;  // keys the reader knows, present or not
+};
+
+std::string jsonValueText(const Json& j);  // compact, truncated, for messages
+
+}  // namespace inim

@@ -1,0 +1,31 @@
+#pragma once
+// A progress bar on stderr, shown only when stderr is a terminal (quiet when piped).
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <string>
+
+namespace inim {
+
+class ProgressBar {
+ public:
+  ProgressBar(std::string label, uint64_t total, bool enabled = stderrIsTerminal());
+  ~ProgressBar();
+  void add(uint64_t n);  // thread safe
+  void finish();
+  static bool stderrIsTerminal();
+
+ private:
+  void draw(uint64_t done, bool final);
+  std::string label_;
+  uint64_t total_;
+  bool enabled_;
+  std::atomic<uint64_t> done_{0};
+  std::atomic<int64_t> lastDrawMs_{-1000};
+  std::chrono::steady_clock::time_point start_;
+  std::mutex drawMutex_;
+  bool finished_ = false;
+};
+
+}  // namespace inim

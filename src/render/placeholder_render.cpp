@@ -1,0 +1,1 @@
+// placeholder: stage render is being written

@@ -1,0 +1,1 @@
+// placeholder: stage scene is being written
