@@ -1,0 +1,1 @@
+// placeholder: stage display is being written

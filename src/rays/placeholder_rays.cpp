@@ -1,0 +1,1 @@
+// placeholder: stage rays is being written

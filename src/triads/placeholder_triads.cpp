@@ -1,0 +1,1 @@
+// placeholder: stage triads is being written
