@@ -6,6 +6,7 @@
 // use and cached on disk.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/geometry.h"
 #include "spectral/spectrum.h"
@@ -23,6 +24,34 @@ class RGBToSpectrumTable {
   // Table for linear Rec.709 / sRGB primaries under D65 (the project's working space).
   static const RGBToSpectrumTable& rec709();
   SigmoidPolynomial operator()(const Vec3& rgb) const;  // rgb in [0,1]
+
+  // Resolution of rec709(): 3 x res^3 coefficient triples.
+  static constexpr int kResolution = 64;
+  // Loads the table from the cache file, or optimises it (TBB) and writes the cache.
+  static RGBToSpectrumTable loadOrCompute(int res);
+  // Optimises the table now, without touching the cache.
+  static RGBToSpectrumTable compute(int res);
+  // Fits one rgb directly by Gauss-Newton (no table), for tests and one-off colours.
+  static SigmoidPolynomial fit(const Vec3& rgb);
+  // Cache file: $INIM_CACHE_DIR, else $XDG_CACHE_HOME/inim, else ~/.cache/inim, else the
+  // temp folder; named rgb2spec_rec709_<res>.bin.
+  static std::string cachePath(int res);
+
+  int resolution() const { return res_; }
+  bool loadedFromCache() const { return fromCache_; }
+  double buildSeconds() const { return buildSeconds_; }  // optimisation time, 0 if cached
+  const std::string& cacheFile() const { return cacheFile_; }  // read or written; "" if none
+
+ private:
+  RGBToSpectrumTable() = default;
+  bool readCache(const std::string& path, int res);
+  void writeCache(const std::string& path) const;
+  int res_ = 0;
+  std::vector<float> zNodes_;  // res brightness nodes, smoothstep(smoothstep(k/(res-1)))
+  std::vector<float> coeffs_;  // [maxc][z][y][x][3], coefficients in nm
+  bool fromCache_ = false;
+  double buildSeconds_ = 0.0;
+  std::string cacheFile_;
 };
 
 // A reflectance in [0,1] reproducing rgb (clamped to [0,1]) under D65.

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian packages inim needs (only those missing) and builds it (Release, -j2).
+# Usage: scripts/setup.sh            (sourced by run-default.sh and test.sh)
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD_DIR="${INIM_BUILD_DIR:-$ROOT/build/release}"
+
+PACKAGES=(build-essential cmake pkg-config libembree-dev libopenexr-dev libopencolorio-dev
+          libglm-dev libtbb-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
+          libcli11-dev libgtest-dev libbenchmark-dev)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing missing Debian packages: ${missing[*]}"
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+else
+  echo "setup: all Debian packages present"
+fi
+
+echo "setup: configuring and building Release in $BUILD_DIR (-j2)"
+cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$BUILD_DIR" -j2 "$@"
+echo "setup: built $BUILD_DIR/inim"

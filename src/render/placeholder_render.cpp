@@ -1,1 +1,0 @@
-// placeholder: stage render is being written
