@@ -1,0 +1,1 @@
+// placeholder: stage camera is being written
