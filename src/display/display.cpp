@@ -1,0 +1,95 @@
+#include "display/display.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/output_file.h"
+#include "display/ei_layout.h"
+
+namespace fs = std::filesystem;
+
+namespace inim {
+
+const char* layoutName(EiLayoutKind k) {
+  switch (k) {
+    case EiLayoutKind::Parallel: return "parallel";
+    case EiLayoutKind::ToedIn: return "toed-in";
+    case EiLayoutKind::LensGrid: return "lens-grid";
+  }
+  return "?";
+}
+
+std::string defaultDisplayPath() { return dataPath("optics/displays/paper-prototype.json"); }
+
+// A reference to a sub-description: an inline object, a .json path relative to the display
+// file, or a catalog name under optics/<folder>/.
+template <class T, class Parse, class Load>
+static T readPart(const JsonObject& o, const std::string& key, const std::string& folder,
+                  Parse parse, Load load) {
+  const Json& v = o.raw(key);
+  if (v.is_object()) return parse(o.object(key));
+  if (!v.is_string()) o.fail(key, jsonValueText(v), "an object, a .json file path or a catalog name");
+  std::string s = v.get<std::string>();
+  std::string path;
+  if (s.size() > 5 && s.substr(s.size() - 5) == ".json") {
+    path = o.path(key);
+  } else {
+    path = dataPath("optics/" + folder + "/" + s + ".json");
+    if (!fs::exists(path)) {
+      std::vector<std::string> names;
+      std::error_code ec;
+      for (const auto& e : fs::directory_iterator(dataPath("optics/" + folder), ec))
+        if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+      std::sort(names.begin(), names.end());
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      o.fail(key, "\"" + s + "\"",
+             "a .json file or a name in optics/" + folder + "/ (known: " + (list.empty() ? "none" : list) + ")");
+    }
+  }
+  if (!fs::exists(path)) o.fail(key, "\"" + s + "\"", "an existing file (" + path + " not found)");
+  return load(path);
+}
+
+static void readPair(const JsonObject& o, const std::string& key, int& a, int& b, bool allowScalar) {
+  const Json& v = o.raw(key);
+  if (allowScalar && v.is_number_integer() && v.get<int>() >= 1) {
+    a = b = v.get<int>();
+    return;
+  }
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer() ||
+      v[0].get<int>() < 1 || v[1].get<int>() < 1)
+    o.fail(key, jsonValueText(v),
+           std::string(allowScalar ? "a whole number >= 1 or " : "") + "[x, y], whole numbers >= 1");
+  a = v[0].get<int>();
+  b = v[1].get<int>();
+}
+
+Display loadDisplay(const std::string& path) {
+  Json j = readJsonFile(path);
+  JsonObject o(j, path, "");
+  Display d;
+  d.file = path;
+  d.name = o.string("name");
+  d.panel = readPart<Panel>(o, "panel", "panels", parsePanel, loadPanel);
+  d.mla = readPart<Mla>(o, "mla", "mlas", parseMla, loadMla);
+  d.generationGapMm = o.positive("generation_gap_mm");
+  d.reconstructionGapMm = o.positive("reconstruction_gap_mm");
+  readPair(o, "ei_px", d.eiWidthPx, d.eiHeightPx, true);
+  readPair(o, "ei_count", d.eiCols, d.eiRows, false);
+  std::string layout = o.choice("layout", {"parallel", "toed-in", "lens-grid"}, "parallel");
+  d.layout = layout == "parallel" ? EiLayoutKind::Parallel
+             : layout == "toed-in" ? EiLayoutKind::ToedIn
+                                   : EiLayoutKind::LensGrid;
+  if (d.layout == EiLayoutKind::ToedIn)
+    d.viewingDistanceMm = o.positive("viewing_distance_mm");
+  else if (o.has("viewing_distance_mm"))
+    d.viewingDistanceMm = o.positive("viewing_distance_mm");
+  d.assumptions = readAssumptions(o);
+  o.rejectUnknown();
+  (void)computeLayout(d);  // validates the EI layout against the panel
+  return d;
+}
+
+}  // namespace inim

@@ -1,1 +1,0 @@
-// placeholder: stage display is being written

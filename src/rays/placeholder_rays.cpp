@@ -1,1 +1,0 @@
-// placeholder: stage rays is being written

@@ -1,1 +1,0 @@
-// placeholder: stage triads is being written
