@@ -7,6 +7,9 @@ namespace inim::cli {
 
 void addRenderCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addDisplayCommand(CLI::App& app);  // inim display info
+void addRaysCommand(CLI::App& app);     // inim rays
+void addEiaCommand(CLI::App& app);      // inim eia
 
 // Options every command that computes shares.
 struct RunOptions {

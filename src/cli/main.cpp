@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("inim ") + INIM_VERSION);
   app.require_subcommand(1);
   inim::cli::addRenderCommand(app);
+  inim::cli::addDisplayCommand(app);
+  inim::cli::addRaysCommand(app);
+  inim::cli::addEiaCommand(app);
   inim::cli::addBenchCommand(app);
   try {
     app.parse(argc, argv);

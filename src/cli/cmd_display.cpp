@@ -1,0 +1,4 @@
+#include "cli/commands.h"
+namespace inim::cli {
+void addDisplayCommand(CLI::App& app) { app.add_subcommand("display", "(being written)"); }
+}

@@ -1,0 +1,4 @@
+#include "cli/commands.h"
+namespace inim::cli {
+void addRaysCommand(CLI::App& app) { app.add_subcommand("rays", "(being written)"); }
+}

@@ -1,0 +1,1 @@
+// placeholder: stage synthesis is being written
