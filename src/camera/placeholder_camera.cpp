@@ -1,1 +1,0 @@
-// placeholder: stage camera is being written
