@@ -1,4 +1,196 @@
+// inim bench: speed benchmarks on Google Benchmark. Ratios are taken between benchmarks of
+// the same run (these machines are shared and noisy, so absolute times drift).
+//
+//   render/paper-fig7      the full default render (1920x1080, 16 spp, direct lighting)
+//   query/bare-embree      rtcIntersect1 over the camera rays of that image, nothing else
+//   query/inim-hit         the same rays through inim's intersection (full surface data)
+//   query/inim-field       the same rays through Field::query (radiance, direct lighting)
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+#include <embree3/rtcore.h>
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <regex>
+#include <vector>
+
 #include "cli/commands.h"
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "render/renderer.h"
+#include "scene/analytic_scene.h"
+
 namespace inim::cli {
-void addBenchCommand(CLI::App& app) { app.add_subcommand("bench", "Benchmarks (in progress)"); }
+
+namespace {
+
+struct BenchContext {
+  std::unique_ptr<AnalyticScene> scene;
+  CameraSpec cam;
+  std::vector<FieldRay> rays;  // one camera ray per pixel of the render
+  std::vector<SampledWavelengths> lambdas;
+};
+
+BenchContext& context() {
+  static BenchContext ctx = [] {
+    BenchContext c;
+    c.scene = AnalyticScene::load(defaultScenePath());
+    c.cam.width = 1920;
+    c.cam.height = 1080;
+    ThinLensCamera camera(c.cam);
+    c.rays.resize(size_t(c.cam.width) * c.cam.height);
+    c.lambdas.resize(c.rays.size());
+    for (int y = 0; y < c.cam.height; ++y)
+      for (int x = 0; x < c.cam.width; ++x) {
+        uint64_t id = uint64_t(y) * c.cam.width + x;
+        Rng rng = Rng::forSample(1, id);
+        Ray r = camera.generateRay(x + rng.uniform(), y + rng.uniform(), {0.5f, 0.5f});
+        c.rays[id] = {r.o, r.d, 0.0f, kInfinity, id, 0};
+        c.lambdas[id] = SampledWavelengths::sampleVisible(rng.uniform());
+      }
+    return c;
+  }();
+  return ctx;
 }
+
+constexpr int64_t kChunk = 4096;
+
+void benchRender(benchmark::State& state) {
+  BenchContext& c = context();
+  RenderSettings rs;
+  rs.spp = 16;
+  rs.progress = false;
+  ThinLensCamera camera(c.cam);
+  for (auto _ : state) {
+    RenderResult r = renderField(*c.scene, camera, rs);
+    benchmark::DoNotOptimize(r.image.data.data());
+  }
+  state.counters["rays/s"] = benchmark::Counter(double(c.cam.width) * c.cam.height * rs.spp,
+                                                benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void benchBareEmbree(benchmark::State& state) {
+  BenchContext& c = context();
+  RTCScene scene = c.scene->embreeScene();
+  for (auto _ : state) {
+    std::atomic<uint64_t> hits{0};
+    parallelForRange(int64_t(c.rays.size()), [&](int64_t b, int64_t e) {
+      RTCIntersectContext ictx;
+      rtcInitIntersectContext(&ictx);
+      uint64_t local = 0;
+      for (int64_t i = b; i < e; ++i) {
+        const FieldRay& fr = c.rays[size_t(i)];
+        RTCRayHit rh;
+        rh.ray.org_x = fr.o.x, rh.ray.org_y = fr.o.y, rh.ray.org_z = fr.o.z;
+        rh.ray.dir_x = fr.d.x, rh.ray.dir_y = fr.d.y, rh.ray.dir_z = fr.d.z;
+        rh.ray.tnear = fr.tNear, rh.ray.tfar = fr.tFar, rh.ray.time = 0.0f;
+        rh.ray.mask = 0xFFFFFFFFu, rh.ray.id = 0, rh.ray.flags = 0;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &ictx, &rh);
+        local += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      }
+      hits += local;
+    }, nullptr, kChunk);
+    benchmark::DoNotOptimize(hits.load());
+  }
+  state.counters["rays/s"] = benchmark::Counter(double(c.rays.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void benchInimHit(benchmark::State& state) {
+  BenchContext& c = context();
+  for (auto _ : state) {
+    std::atomic<uint64_t> hits{0};
+    parallelForRange(int64_t(c.rays.size()), [&](int64_t b, int64_t e) {
+      uint64_t local = 0;
+      Hit h;
+      for (int64_t i = b; i < e; ++i) {
+        const FieldRay& fr = c.rays[size_t(i)];
+        local += c.scene->intersect(Ray{fr.o, fr.d, fr.tNear, fr.tFar}, h);
+      }
+      hits += local;
+    }, nullptr, kChunk);
+    benchmark::DoNotOptimize(hits.load());
+  }
+  state.counters["rays/s"] = benchmark::Counter(double(c.rays.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void benchInimField(benchmark::State& state) {
+  BenchContext& c = context();
+  std::vector<FieldSample> out(c.rays.size());
+  for (auto _ : state) {
+    parallelForRange(int64_t(c.rays.size()), [&](int64_t b, int64_t e) {
+      c.scene->query(std::span(c.rays).subspan(size_t(b), size_t(e - b)),
+                     std::span<const SampledWavelengths>(c.lambdas).subspan(size_t(b), size_t(e - b)),
+                     std::span(out).subspan(size_t(b), size_t(e - b)), 1);
+    }, nullptr, kChunk);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["rays/s"] = benchmark::Counter(double(c.rays.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+// Console output as usual, and the runs kept for the ratio table.
+class RecordingReporter : public benchmark::ConsoleReporter {
+ public:
+  RecordingReporter()
+      : ConsoleReporter(isatty(STDOUT_FILENO) ? OO_ColorTabular : OO_Tabular) {}
+  std::map<std::string, double> raysPerSecond;
+  void ReportRuns(const std::vector<Run>& runs) override {
+    ConsoleReporter::ReportRuns(runs);
+    for (const auto& r : runs) {
+      auto it = r.counters.find("rays/s");
+      if (it != r.counters.end() && r.run_type == Run::RT_Iteration)
+        raysPerSecond[r.run_name.function_name] = it->second.value;
+    }
+  }
+};
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app) {
+  struct Opts {
+    std::string filter = ".*";
+    double minTime = 0.5;
+    RunOptions run;
+  };
+  auto o = std::make_shared<Opts>();
+  auto* cmd = app.add_subcommand("bench", "Speed benchmarks (Google Benchmark) with ratios measured in one run");
+  cmd->add_option("--filter", o->filter, "Regex of benchmarks to run")->capture_default_str();
+  cmd->add_option("--min-time", o->minTime, "Minimum seconds per benchmark")->capture_default_str();
+  addRunOptions(cmd, o->run);
+  cmd->callback([o]() {
+    ThreadLimit threads(o->run.threads);
+    // Debian builds libbenchmark without NDEBUG, so it prints a DEBUG warning; inim itself
+    // is a Release build (see the header line below).
+    auto reg = [&](const char* name, void (*fn)(benchmark::State&), bool once) {
+      auto* b = benchmark::RegisterBenchmark(name, fn)->UseRealTime()->Unit(benchmark::kMillisecond);
+      if (once) b->Iterations(1);
+      else b->MinTime(o->minTime);
+    };
+    reg("query/bare-embree", benchBareEmbree, false);
+    reg("query/inim-hit", benchInimHit, false);
+    reg("query/inim-field", benchInimField, false);
+    reg("render/paper-fig7-1920x1080-16spp-direct", benchRender, true);
+    std::string filterArg = "--benchmark_filter=" + o->filter;
+    std::vector<char*> args = {const_cast<char*>("inim bench"), filterArg.data()};
+    int argc = int(args.size());
+    benchmark::Initialize(&argc, args.data());
+    std::printf("inim %s (%s build); threads: %d; scene: %s; %zu camera rays (1920x1080, 1 per pixel) for query/*\n",
+                INIM_VERSION, INIM_BUILD_TYPE, o->run.threads > 0 ? o->run.threads : hardwareThreads(), defaultScenePath().c_str(),
+                context().rays.size());
+    RecordingReporter reporter;
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+    benchmark::Shutdown();
+    auto& rps = reporter.raysPerSecond;
+    auto ratio = [&](const char* a, const char* b) {
+      if (rps.count(a) && rps.count(b) && rps[b] > 0)
+        std::printf("  %-18s / %-18s = %.3f\n", a, b, rps[a] / rps[b]);
+    };
+    std::printf("\nRatios of rays/s, same run:\n");
+    ratio("query/inim-hit", "query/bare-embree");
+    ratio("query/inim-field", "query/bare-embree");
+  });
+}
+
+}  // namespace inim::cli

@@ -2,6 +2,9 @@
 // Each subcommand lives in its own cmd_*.cpp and registers itself on the app.
 // The callback runs the command; InputError thrown from it becomes exit status 2.
 #include <CLI/CLI.hpp>
+#include <string>
+
+#include "core/geometry.h"
 
 namespace inim::cli {
 
@@ -17,5 +20,10 @@ struct RunOptions {
   int threads = 0;  // 0 = all cores
 };
 void addRunOptions(CLI::App* cmd, RunOptions& opts);
+
+// "x,y,z" -> vector; InputError naming the option otherwise.
+Vec3 parseVec3Option(const std::string& text, const std::string& option);
+// scenes/paper-fig7.json under the data folder.
+std::string defaultScenePath();
 
 }  // namespace inim::cli

@@ -1,5 +1,7 @@
 #include "core/error.h"
 
+#include <sstream>
+
 namespace inim {
 
 InputError::InputError(std::string file, std::string key, std::string value, std::string expected)
@@ -11,17 +13,13 @@ InputError::InputError(std::string file, std::string key, std::string value, std
 
 std::string InputError::format(const std::string& file, const std::string& key,
                                const std::string& value, const std::string& expected) {
-  std::string msg = file;
-  auto part = [&msg](const char* sep, const char* label, const std::string& text) {
-    if (text.empty()) return;
-    if (!msg.empty()) msg.append(sep);
-    msg.append(label).append(text);
-  };
-  part(": ", "key '", key);
-  if (!key.empty()) msg.append("'");
-  part(": ", "value ", value);
-  part("; ", "expected ", expected);
-  return msg;
+  std::ostringstream msg;
+  const char* sep = "";
+  if (!file.empty()) msg << file, sep = ": ";
+  if (!key.empty()) msg << sep << "key '" << key << "'", sep = ": ";
+  if (!value.empty()) msg << sep << "value " << value, sep = "; ";
+  if (!expected.empty()) msg << (*sep ? "; " : "") << "expected " << expected;
+  return msg.str();
 }
 
 InputError InputError::withFile(const std::string& file) const {

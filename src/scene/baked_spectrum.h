@@ -1,0 +1,60 @@
+#pragma once
+// A spectrum baked into a dense table at 1 nm over 360-830 nm (or a constant), so the
+// per-ray hot path evaluates spectra with a lerp instead of virtual calls and searches.
+#include <immintrin.h>
+
+#include <vector>
+
+#include "spectral/sampled.h"
+#include "spectral/spectrum.h"
+
+namespace inim {
+
+class BakedSpectrum {
+ public:
+  BakedSpectrum() = default;  // zero everywhere
+  explicit BakedSpectrum(float c) : c_(c) {}
+  // Bakes s(lambda) * scale. Constant spectra stay constant (exact).
+  explicit BakedSpectrum(const Spectrum& s, float scale = 1.0f);
+
+  bool isConstant() const { return table_.empty(); }
+  float operator()(float lambdaNm) const {
+    if (table_.empty()) return c_;
+    float x = lambdaNm - kLambdaMin;
+    if (!(x > 0.0f)) return table_.front();
+    if (x >= float(table_.size() - 1)) return table_.back();
+    int i = int(x);
+    float f = x - float(i);
+    return table_[i] + f * (table_[i + 1] - table_[i]);
+  }
+  // The 4 lanes are computed in registers and stored once (element-wise writes read back
+  // as one vector stall on store forwarding in the hot path).
+  SampledSpectrum sample(const SampledWavelengths& lambda) const {
+    static_assert(kNumWavelengths == 4, "SSE lanes");
+    if (table_.empty()) return SampledSpectrum(c_);
+    SampledSpectrum s;
+    _mm_storeu_ps(&s[0], _mm_setr_ps((*this)(lambda[0]), (*this)(lambda[1]), (*this)(lambda[2]),
+                                     (*this)(lambda[3])));
+    return s;
+  }
+  float maxValue() const;
+  float minValue() const;
+  float average() const;  // mean over 360-830 nm
+  // Luminance-weighted value: integral(s * ybar) / integral(ybar).
+  float luminance() const;
+  BakedSpectrum scaled(float s) const;
+  // Applies f to every value (e.g. -log(T)/d for an absorption coefficient).
+  template <class F>
+  BakedSpectrum map(F f) const {
+    BakedSpectrum r = *this;
+    if (r.table_.empty()) r.c_ = f(r.c_);
+    for (float& v : r.table_) v = f(v);
+    return r;
+  }
+
+ private:
+  float c_ = 0.0f;
+  std::vector<float> table_;  // 471 values at 360, 361, ..., 830 nm when not constant
+};
+
+}  // namespace inim

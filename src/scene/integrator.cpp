@@ -1,0 +1,322 @@
+#include "scene/integrator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/sampling.h"
+
+namespace inim {
+
+struct Integrator::Vertex {
+  const Hit* h;
+  const Material* m;
+  Vec3 wo;   // unit, toward where the light goes
+  Vec3 ng;   // geometric normal on wo's side
+  Vec3 ns;   // shading normal on wo's side
+  SampledSpectrum albedo;  // diffuse reflectance at the hit
+};
+
+SampledSpectrum Integrator::thinTransmittance(const Material& m, float cosTheta,
+                                              const SampledWavelengths& lambda,
+                                              SampledSpectrum* R) const {
+  SampledSpectrum T;
+  cosTheta = std::clamp(cosTheta, 0.0f, 1.0f);
+  const bool clear = m.negLogTau.isConstant() && m.negLogTau(550.0f) <= 0.0f;
+  const bool constN = !m.dispersive;
+  float n0 = m.n(lambda[0]);
+  float R0 = fresnelDielectric(cosTheta, n0);
+  float invCosT0 = 1.0f;
+  if (!clear) {
+    // The internal path grows as 1/cos(theta_t) at oblique incidence.
+    float sin2T = (1.0f - cosTheta * cosTheta) / (n0 * n0);
+    invCosT0 = 1.0f / std::sqrt(std::max(1e-6f, 1.0f - sin2T));
+  }
+  for (int i = 0; i < kNumWavelengths; ++i) {
+    float R1 = R0, invCosT = invCosT0;
+    if (!constN && i > 0) {
+      float n = m.n(lambda[i]);
+      R1 = fresnelDielectric(cosTheta, n);
+      float sin2T = (1.0f - cosTheta * cosTheta) / (n * n);
+      invCosT = 1.0f / std::sqrt(std::max(1e-6f, 1.0f - sin2T));
+    }
+    float tau = clear ? 1.0f : std::exp(-m.negLogTau(lambda[i]) * invCosT);
+    float Rt, Tt;
+    thinSheet(R1, tau, &Rt, &Tt);
+    (*R)[i] = Rt;
+    T[i] = Tt;
+  }
+  return T;
+}
+
+SampledSpectrum Integrator::filterTransmittance(const ShadowRequest& req,
+                                                const SampledWavelengths& lambda) const {
+  SampledSpectrum T(1.0f);
+  if (!settings_.filterShadows || !geom_.mayHitFilter(req.ray)) return T;
+  Ray r = req.ray;
+  for (int k = 0; k < 16; ++k) {
+    Hit h;
+    if (!geom_.intersectFilter(r, &h)) break;
+    const Material& m = materials_[geom_.shape(h.shape).material];
+    SampledSpectrum R;
+    T *= thinTransmittance(m, std::abs(glm::dot(h.ng, req.dir)), lambda, &R);
+    if (T.isBlack()) return T;
+    Point3 o = spawnOrigin(h, req.dir);
+    r = req.infinite ? Ray{o, req.dir, 0.0f, kInfinity} : Ray{o, req.target - o, 0.0f, 1.0f};
+  }
+  return T;
+}
+
+SampledSpectrum Integrator::shadowTransmittance(const ShadowRequest& req,
+                                                const SampledWavelengths& lambda) const {
+  if (geom_.occluded(req.ray, shadowMask())) return SampledSpectrum(0.0f);
+  return filterTransmittance(req, lambda);
+}
+
+SampledSpectrum Integrator::evalBsdf(const Vertex& v, const Vec3& wi,
+                                     const SampledWavelengths& lambda, float* pdf) const {
+  *pdf = 0.0f;
+  if (glm::dot(wi, v.ng) <= 0.0f) return SampledSpectrum(0.0f);  // reflection only
+  float cosI = glm::dot(wi, v.ns);
+  if (cosI <= 0.0f) return SampledSpectrum(0.0f);
+  if (v.m->type == MaterialType::Diffuse) {
+    *pdf = cosI * kInvPi;
+    return v.albedo * (cosI * kInvPi);
+  }
+  // Rough conductor.
+  Frame f = Frame::fromZ(v.ns);
+  Vec3 woL = f.toLocal(v.wo), wiL = f.toLocal(wi);
+  *pdf = ggx::pdfReflect(woL, wiL, v.m->alpha);
+  return roughConductorF(*v.m, woL, wiL, lambda) * wiL.z;
+}
+
+SampledSpectrum Integrator::sampleOneLight(int light, float pmf, const Vertex& v,
+                                           const SampledWavelengths& lambda, Rng& rng, bool mis,
+                                           const SampledSpectrum& beta,
+                                           ShadowRequest* deferred) const {
+  LightSampleContext ctx{v.h->p, v.ns};
+  Vec2 u(rng.uniform(), rng.uniform());
+  float u3 = rng.uniform();
+  LightSample ls;
+  if (!lights_.sample(light, ctx, u, u3, lambda, &ls)) return SampledSpectrum(0.0f);
+  float bsdfPdf;
+  SampledSpectrum f = evalBsdf(v, ls.wi, lambda, &bsdfPdf);
+  if (f.isBlack() || ls.L.isBlack()) return SampledSpectrum(0.0f);
+  ShadowRequest req;
+  Point3 o = spawnOrigin(*v.h, ls.wi);
+  req.infinite = ls.infinite;
+  req.dir = ls.wi;
+  if (ls.infinite) {
+    req.ray = Ray{o, ls.wi, 0.0f, kInfinity};
+  } else {
+    req.target = ls.pLight;
+    if (!ls.delta) {
+      // Pull the target off the light's surface, toward the shading point.
+      const Shape& s = geom_.shape(lights_.lights()[light].shape);
+      float e = offsetEpsilon(ls.pLight, s.extent);
+      req.target += (glm::dot(ls.nLight, o - ls.pLight) >= 0.0f ? e : -e) * ls.nLight;
+    }
+    req.ray = Ray{o, req.target - o, 0.0f, 1.0f};
+  }
+  float w = 1.0f;
+  if (mis && !ls.delta) w = powerHeuristic(pmf * ls.pdf, bsdfPdf);
+  req.contribution = beta * f * ls.L * (w / (pmf * ls.pdf));
+  if (deferred) {
+    req.active = true;
+    *deferred = req;
+    return SampledSpectrum(0.0f);
+  }
+  SampledSpectrum Tr = shadowTransmittance(req, lambda);
+  if (Tr.isBlack()) return SampledSpectrum(0.0f);
+  return req.contribution * Tr;
+}
+
+SampledSpectrum Integrator::directLight(const Vertex& v, const SampledWavelengths& lambda, Rng& rng,
+                                        bool mis, const SampledSpectrum& beta,
+                                        ShadowRequest* deferred) const {
+  if (lights_.selection() == LightSelection::All) {
+    SampledSpectrum sum(0.0f);
+    for (int i = 0; i < int(lights_.lights().size()); ++i) {
+      float pmf = lights_.pmf(i);
+      if (pmf > 0.0f) sum += sampleOneLight(i, pmf, v, lambda, rng, mis, beta, nullptr);
+    }
+    return sum;
+  }
+  float pmf;
+  int light = lights_.select(rng.uniform(), &pmf);
+  if (light < 0) return SampledSpectrum(0.0f);
+  return sampleOneLight(light, pmf, v, lambda, rng, mis, beta, deferred);
+}
+
+SampledSpectrum Integrator::Li(const Ray& ray, SampledWavelengths& lambda, Rng& rng,
+                               float* hitT) const {
+  Hit h;
+  bool hit = geom_.intersect(ray, &h);
+  return LiFromHit(ray, hit, h, lambda, rng, hitT, nullptr);
+}
+
+SampledSpectrum Integrator::LiFromHit(const Ray& ray0, bool didHit, const Hit& firstHit,
+                                      SampledWavelengths& lambda, Rng& rng, float* hitT,
+                                      ShadowRequest* deferred) const {
+  const bool path = settings_.type == IntegratorSettings::Type::Path;
+  SampledSpectrum L(0.0f), beta(1.0f);
+  Ray ray = ray0;
+  bool specular = true;  // emitters seen by the query ray or through specular chains count fully
+  float prevPdf = 0.0f;
+  LightSampleContext prevCtx;
+  const Material* medium = nullptr;  // absorbing dielectric the ray travels in
+  *hitT = kInfinity;
+
+  Hit scratch;
+  for (int depth = 0;; ++depth) {
+    bool hit;
+    if (depth == 0) {
+      hit = didHit;
+    } else {
+      hit = geom_.intersect(ray, &scratch);
+    }
+    const Hit& h = depth == 0 ? firstHit : scratch;
+    if (!hit) {
+      int env = lights_.environment();
+      if (env >= 0) {
+        SampledSpectrum Le = lights_.environmentLe(lambda);
+        if (specular) {
+          L += beta * Le;
+        } else if (path) {
+          float pl = lights_.pmf(env) * lights_.pdfEnvironment(prevCtx, ray.d);
+          L += beta * Le * powerHeuristic(prevPdf, pl);
+        }
+      }
+      break;
+    }
+    if (depth == 0) *hitT = h.t;
+    if (medium) {
+      for (int i = 0; i < kNumWavelengths; ++i)
+        beta[i] *= std::exp(-medium->sigma(lambda[i]) * h.t);
+    }
+    const Shape& s = geom_.shape(h.shape);
+    const Material& m = materials_[s.material];
+    Vec3 wo = -ray.d;
+    bool front = glm::dot(h.ng, wo) >= 0.0f;
+
+    if (m.emissive && (m.twoSided || front)) {
+      SampledSpectrum Le = m.Le.sample(lambda);
+      if (specular) {
+        L += beta * Le;
+      } else if (path && s.light >= 0) {
+        float pl = lights_.pmf(s.light) * lights_.pdfArea(s.light, prevCtx, h);
+        L += beta * Le * powerHeuristic(prevPdf, pl);
+      }
+    }
+    if (m.type == MaterialType::Emitter) break;
+    const bool last = depth >= settings_.maxDepth;
+    Vertex v{&h, &m, wo, front ? h.ng : -h.ng, front ? h.ns : -h.ns, SampledSpectrum(0.0f)};
+    Vec3 wi;
+
+    if (!m.isSpecular()) {
+      if (m.type == MaterialType::Diffuse) v.albedo = m.reflectance.evaluate(h.tex, lambda);
+      if (!path) {  // direct lighting ends at the first non-specular surface
+        L += directLight(v, lambda, rng, false, beta, deferred);
+        break;
+      }
+      if (last) break;
+      L += directLight(v, lambda, rng, true, beta, nullptr);
+      Frame f = Frame::fromZ(v.ns);
+      Vec2 u(rng.uniform(), rng.uniform());
+      float pdf;
+      SampledSpectrum weight;
+      if (m.type == MaterialType::Diffuse) {
+        Vec3 wiL = sampleCosineHemisphere(u);
+        pdf = cosineHemispherePdf(wiL.z);
+        wi = f.fromLocal(wiL);
+        weight = v.albedo;  // f cos / pdf
+      } else {
+        Vec3 woL = f.toLocal(wo);
+        if (woL.z <= 0.0f) break;
+        Vec3 wm = ggx::sampleWm(woL, u, m.alpha);
+        Vec3 wiL = reflect(woL, wm);
+        if (wiL.z <= 0.0f) break;
+        pdf = ggx::pdfReflect(woL, wiL, m.alpha);
+        if (!(pdf > 0.0f)) break;
+        wi = f.fromLocal(wiL);
+        weight = roughConductorF(m, woL, wiL, lambda) * (wiL.z / pdf);
+      }
+      if (!(pdf > 0.0f) || glm::dot(wi, v.ng) <= 0.0f) break;
+      beta *= weight;
+      specular = false;
+      prevPdf = pdf;
+      prevCtx = LightSampleContext{h.p, v.ns};
+      wi = glm::normalize(wi);
+    } else {
+      if (last) break;
+      switch (m.type) {
+        case MaterialType::Conductor: {
+          beta *= conductorFresnel(m, std::abs(glm::dot(v.ns, wo)), lambda);
+          wi = reflect(wo, v.ns);
+          specular = true;
+          break;
+        }
+        case MaterialType::Dielectric: {
+          // h.ns points outward: cos > 0 means the ray arrives from outside.
+          float cosO = glm::dot(h.ns, wo);
+          float n0 = m.n(lambda[0]);
+          float R0 = fresnelDielectric(cosO, n0);
+          SampledSpectrum R(R0);
+          if (m.dispersive)
+            for (int i = 1; i < kNumWavelengths; ++i) R[i] = fresnelDielectric(cosO, m.n(lambda[i]));
+          float etap;
+          Vec3 wt;
+          bool canRefract = R0 < 1.0f && refract(wo, h.ns, n0, &etap, &wt);
+          if (!canRefract || rng.uniform() < R0) {
+            wi = reflect(wo, h.ns);
+            if (canRefract) beta *= R / R0;  // R0 == 1 (TIR): weight R(lambda)/1
+            else beta *= R;
+          } else {
+            if (m.dispersive && !lambda.secondaryTerminated()) {
+              // Each wavelength refracts its own way: only the hero goes on.
+              lambda.terminateSecondary();
+              for (int i = 1; i < kNumWavelengths; ++i) beta[i] = 0.0f;
+            }
+            // Weight T/(1-R0) == 1 at the hero wavelength; radiance scales by 1/eta^2.
+            beta *= 1.0f / (etap * etap);
+            wi = wt;
+            medium = (cosO > 0.0f && m.absorbing) ? &m : nullptr;
+          }
+          specular = true;
+          break;
+        }
+        default: {  // thin dielectric sheet: reflect, or pass straight through
+          SampledSpectrum R;
+          SampledSpectrum T = thinTransmittance(m, std::abs(glm::dot(v.ng, wo)), lambda, &R);
+          float ra = R.average(), ta = T.average();
+          if (!(ra + ta > 0.0f)) {
+            beta = SampledSpectrum(0.0f);
+            break;
+          }
+          float pR = ra / (ra + ta);
+          if (rng.uniform() < pR) {
+            wi = reflect(wo, v.ng);
+            beta *= R / pR;
+            specular = true;
+          } else {
+            wi = -wo;
+            beta *= T / (1.0f - pR);
+            // With coloured shadows, light sampling already looked through the sheet, so
+            // the path keeps the MIS state of its last scattering vertex.
+            if (!settings_.filterShadows) specular = true;
+          }
+          break;
+        }
+      }
+    }
+    if (beta.isBlack()) break;
+    if (path && settings_.rrDepth >= 0 && depth >= settings_.rrDepth) {
+      float q = std::max(0.0f, 1.0f - beta.maxValue());
+      if (rng.uniform() < q) break;
+      beta = beta / (1.0f - q);
+    }
+    ray = Ray{spawnOrigin(h, wi), wi, 0.0f, kInfinity};
+  }
+  return L;
+}
+
+}  // namespace inim

@@ -1,1 +1,0 @@
-// placeholder: stage scene is being written
