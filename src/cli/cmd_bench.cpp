@@ -5,6 +5,9 @@
 //   query/bare-embree      rtcIntersect1 over the camera rays of that image, nothing else
 //   query/inim-hit         the same rays through inim's intersection (full surface data)
 //   query/inim-field       the same rays through Field::query (radiance, direct lighting)
+//   eia/paper-fig7         full orthoscopic EIA of the default display (6,215,625 rays, 1 spp)
+//   eia-query/bare-embree  rtcIntersect1 over that EIA's 6.2M query rays
+//   eia-query/inim-field   the same query rays through Field::query
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 #include <embree3/rtcore.h>
@@ -13,7 +16,14 @@
 #include <map>
 #include <memory>
 #include <regex>
+#include <sys/resource.h>
 #include <vector>
+
+#include "display/display.h"
+#include "display/ei_layout.h"
+#include "rays/pinhole_rays.h"
+#include "synthesis/eia_synthesis.h"
+#include "synthesis/orthoscopic.h"
 
 #include "cli/commands.h"
 #include "core/parallel.h"
@@ -56,6 +66,52 @@ BenchContext& context() {
 
 constexpr int64_t kChunk = 4096;
 
+double peakRssMiB() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_maxrss) / 1024.0;  // Linux reports KiB
+}
+
+// The default display and its orthoscopic query rays (the VCP at the default distance).
+struct EiaContext {
+  Display display = loadDisplay(defaultDisplayPath());
+  EiLayout layout = computeLayout(display);
+  std::vector<FieldRay> queries;
+  std::vector<SampledWavelengths> lambdas;
+};
+
+EiaContext& eiaContext() {
+  static EiaContext ctx = [] {
+    EiaContext c;
+    RaySet rays = generatePinholeRays(c.layout);
+    OrthoscopicQuery oq(Transform(), kDefaultVcpMm);
+    c.queries.resize(rays.size());
+    c.lambdas.resize(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) {
+      Ray r = rays.ray(i);
+      c.queries[i] = oq.make(Point3d(r.o), Vec3d(r.d), i, 0).ray;
+      c.lambdas[i] = SampledWavelengths::sampleVisible(Rng::forSample(1, i).uniform());
+    }
+    return c;
+  }();
+  return ctx;
+}
+
+void benchEia(benchmark::State& state) {
+  BenchContext& c = context();
+  EiaContext& e = eiaContext();
+  SynthesisSettings s;
+  s.autoExposure = true;
+  s.progress = false;
+  for (auto _ : state) {
+    SynthesisResult r = synthesizeEia(e.layout, e.display.panel, *c.scene, s);
+    benchmark::DoNotOptimize(r.eia.data.data());
+  }
+  state.counters["rays/s"] =
+      benchmark::Counter(double(e.layout.numRays()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["peak_RSS_MiB"] = peakRssMiB();
+}
+
 void benchRender(benchmark::State& state) {
   BenchContext& c = context();
   RenderSettings rs;
@@ -70,17 +126,17 @@ void benchRender(benchmark::State& state) {
                                                 benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void benchBareEmbree(benchmark::State& state) {
+void bareEmbreeLoop(benchmark::State& state, const std::vector<FieldRay>& rays) {
   BenchContext& c = context();
   RTCScene scene = c.scene->embreeScene();
   for (auto _ : state) {
     std::atomic<uint64_t> hits{0};
-    parallelForRange(int64_t(c.rays.size()), [&](int64_t b, int64_t e) {
+    parallelForRange(int64_t(rays.size()), [&](int64_t b, int64_t e) {
       RTCIntersectContext ictx;
       rtcInitIntersectContext(&ictx);
       uint64_t local = 0;
       for (int64_t i = b; i < e; ++i) {
-        const FieldRay& fr = c.rays[size_t(i)];
+        const FieldRay& fr = rays[size_t(i)];
         RTCRayHit rh;
         rh.ray.org_x = fr.o.x, rh.ray.org_y = fr.o.y, rh.ray.org_z = fr.o.z;
         rh.ray.dir_x = fr.d.x, rh.ray.dir_y = fr.d.y, rh.ray.dir_z = fr.d.z;
@@ -95,7 +151,7 @@ void benchBareEmbree(benchmark::State& state) {
     }, nullptr, kChunk);
     benchmark::DoNotOptimize(hits.load());
   }
-  state.counters["rays/s"] = benchmark::Counter(double(c.rays.size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["rays/s"] = benchmark::Counter(double(rays.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void benchInimHit(benchmark::State& state) {
@@ -116,18 +172,26 @@ void benchInimHit(benchmark::State& state) {
   state.counters["rays/s"] = benchmark::Counter(double(c.rays.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void benchInimField(benchmark::State& state) {
+void fieldLoop(benchmark::State& state, const std::vector<FieldRay>& rays,
+               const std::vector<SampledWavelengths>& lambdas) {
   BenchContext& c = context();
-  std::vector<FieldSample> out(c.rays.size());
+  std::vector<FieldSample> out(rays.size());
   for (auto _ : state) {
-    parallelForRange(int64_t(c.rays.size()), [&](int64_t b, int64_t e) {
-      c.scene->query(std::span(c.rays).subspan(size_t(b), size_t(e - b)),
-                     std::span<const SampledWavelengths>(c.lambdas).subspan(size_t(b), size_t(e - b)),
+    parallelForRange(int64_t(rays.size()), [&](int64_t b, int64_t e) {
+      c.scene->query(std::span(rays).subspan(size_t(b), size_t(e - b)),
+                     std::span<const SampledWavelengths>(lambdas).subspan(size_t(b), size_t(e - b)),
                      std::span(out).subspan(size_t(b), size_t(e - b)), 1);
     }, nullptr, kChunk);
     benchmark::DoNotOptimize(out.data());
   }
-  state.counters["rays/s"] = benchmark::Counter(double(c.rays.size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["rays/s"] = benchmark::Counter(double(rays.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void benchBareEmbree(benchmark::State& state) { bareEmbreeLoop(state, context().rays); }
+void benchInimField(benchmark::State& state) { fieldLoop(state, context().rays, context().lambdas); }
+void benchEiaBareEmbree(benchmark::State& state) { bareEmbreeLoop(state, eiaContext().queries); }
+void benchEiaField(benchmark::State& state) {
+  fieldLoop(state, eiaContext().queries, eiaContext().lambdas);
 }
 
 // Console output as usual, and the runs kept for the ratio table.
@@ -172,6 +236,9 @@ void addBenchCommand(CLI::App& app) {
     reg("query/inim-hit", benchInimHit, false);
     reg("query/inim-field", benchInimField, false);
     reg("render/paper-fig7-1920x1080-16spp-direct", benchRender, true);
+    reg("eia/paper-fig7-default-display-1spp", benchEia, true);
+    reg("eia-query/bare-embree", benchEiaBareEmbree, false);
+    reg("eia-query/inim-field", benchEiaField, false);
     std::string filterArg = "--benchmark_filter=" + o->filter;
     std::vector<char*> args = {const_cast<char*>("inim bench"), filterArg.data()};
     int argc = int(args.size());
@@ -185,11 +252,13 @@ void addBenchCommand(CLI::App& app) {
     auto& rps = reporter.raysPerSecond;
     auto ratio = [&](const char* a, const char* b) {
       if (rps.count(a) && rps.count(b) && rps[b] > 0)
-        std::printf("  %-18s / %-18s = %.3f\n", a, b, rps[a] / rps[b]);
+        std::printf("  %-36s / %-22s = %.3f\n", a, b, rps[a] / rps[b]);
     };
     std::printf("\nRatios of rays/s, same run:\n");
     ratio("query/inim-hit", "query/bare-embree");
     ratio("query/inim-field", "query/bare-embree");
+    ratio("eia-query/inim-field", "eia-query/bare-embree");
+    ratio("eia/paper-fig7-default-display-1spp", "eia-query/bare-embree");
   });
 }
 

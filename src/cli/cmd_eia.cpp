@@ -1,4 +1,236 @@
+// inim eia: orthoscopic elemental-image synthesis. Display + scene (a Field) + placement ->
+// the EIA at the panel's full resolution: a linear EXR of drive values (+ A, Z with --aovs),
+// an encoded PNG beside it, and optionally the placement preview and the triads as a Zemax
+// SDF source file. See src/synthesis/eia_synthesis.h.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <future>
+#include <memory>
+#include <string>
+
 #include "cli/commands.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/output_file.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "display/display.h"
+#include "rays/pinhole_rays.h"
+#include "scene/analytic_scene.h"
+#include "synthesis/display_overrides.h"
+#include "synthesis/eia_synthesis.h"
+#include "synthesis/preview.h"
+#include "triads/triads.h"
+
+namespace fs = std::filesystem;
+
 namespace inim::cli {
-void addEiaCommand(CLI::App& app) { app.add_subcommand("eia", "(being written)"); }
+
+namespace {
+
+std::string lowerExt(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
 }
+
+void requireExt(const std::string& path, const std::string& key, std::initializer_list<const char*> exts,
+                const std::string& what) {
+  std::string e = lowerExt(path);
+  for (const char* x : exts)
+    if (e == x) return;
+  throw InputError("", key, "\"" + path + "\"", what);
+}
+
+std::string num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+}  // namespace
+
+void addEiaCommand(CLI::App& app) {
+  struct Opts {
+    std::string display, scene, out, png, sdf, run, preview;
+    std::string triads, scale, rotate, translate, layout, exposure, gamut, whiteBalance;
+    double vcpMm = kDefaultVcpMm, viewingDistanceMm = 0.0;
+    int spp = 1;
+    bool aovs = false, quiet = false;
+    RunOptions runOpts;
+  };
+  auto o = std::make_shared<Opts>();
+  auto* cmd = app.add_subcommand(
+      "eia", "Orthoscopic EIA synthesis: query the scene along every reversed display ray from the VCP and write the "
+             "panel drive values");
+  cmd->add_option("--display", o->display, "Display JSON (default: optics/displays/paper-prototype.json)");
+  auto* sceneOpt = cmd->add_option("--scene", o->scene, "Scene JSON (default: scenes/paper-fig7.json)");
+  cmd->add_option("--out", o->out, "Output EXR of linear drive values at the panel resolution")->required();
+  auto* pngOpt = cmd->add_option("--png", o->png, "Encoded PNG (default: beside --out, same name, .png)");
+  cmd->add_option("--sdf", o->sdf, "Also write the triads (3 rays per display ray) as a Zemax SDF source file");
+  auto* triOpt = cmd->add_option("--triad-wavelengths", o->triads,
+                                 "Triad wavelengths: panel (primary peaks, default), paper (656,566,471), "
+                                 "zemax-sequential (620,525,460) or R,G,B in nm");
+  auto* scaleOpt = cmd->add_option("--scale", o->scale, "Placement scale, display mm per field unit: S or sx,sy,sz (analytic scenes are in mm: 1; "
+                                   "the paper's NeRF at 0.0075 units/mm: 133.33)");
+  auto* rotOpt = cmd->add_option("--rotate-deg", o->rotate, "Placement rotation rx,ry,rz (x, then y, then z), degrees");
+  auto* trOpt = cmd->add_option("--translate-mm", o->translate, "Placement translation x,y,z in mm (applied last)");
+  cmd->add_option("--run", o->run, "Run file (JSON): placement and settings; command-line options override it");
+  auto* vcpOpt = cmd->add_option("--vcp-mm", o->vcpMm,
+                                 "VCP distance D_VCP in front of the MLA (the near clipping plane), mm")
+                     ->capture_default_str();
+  auto* layoutOpt = cmd->add_option("--layout", o->layout, "EI layout: parallel, toed-in or lens-grid");
+  auto* distOpt = cmd->add_option("--viewing-distance-mm", o->viewingDistanceMm, "Viewing distance D for toed-in");
+  auto* sppOpt = cmd->add_option("--spp", o->spp, "Field samples per display ray (wavelengths, light samples)")
+                     ->capture_default_str();
+  auto* expOpt = cmd->add_option("--exposure", o->exposure,
+                                 "Drive = E x panel-native RGB (field luminance 1/E = panel white), or auto (default: the "
+                                 "99th percentile of the brightest channel of the pixels that see the scene -> full "
+                                 "drive)");
+  auto* gamutOpt = cmd->add_option("--gamut", o->gamut, "Out-of-gamut mapping: clip (per channel, default) or desaturate");
+  auto* wbOpt = cmd->add_option("--white-balance", o->whiteBalance,
+                                "none (colorimetric, default) or d65 (gains so that D65 drives 1,1,1)");
+  cmd->add_flag("--aovs", o->aovs, "Add A (opacity) and Z (display z of the first surface, mm) channels to the EXR");
+  cmd->add_option("--preview", o->preview, "Placement preview PNG (central ray of each lenslet, like the paper's Fig. 4)");
+  cmd->add_flag("--quiet", o->quiet, "Print nothing but warnings");
+  addRunOptions(cmd, o->runOpts);
+  auto* seedOpt = cmd->get_option("--seed");
+
+  cmd->callback([=] {
+    ThreadLimit threads(o->runOpts.threads);
+    const auto t0 = std::chrono::steady_clock::now();
+
+    // Settings: defaults < run file < command line.
+    RunFile run;
+    if (!o->run.empty()) run = loadRunFile(o->run);
+    SynthesisSettings s;
+    if (run.placement) s.placement = *run.placement;
+    if (scaleOpt->count()) {
+      s.placement.scale = parseVec3(o->scale, "--scale", true);
+      s.placement.scaleKey = "--scale";
+      s.placement.source = "command line";
+    }
+    if (rotOpt->count()) s.placement.rotateDeg = parseVec3(o->rotate, "--rotate-deg");
+    if (trOpt->count()) s.placement.translateMm = parseVec3(o->translate, "--translate-mm");
+    if (rotOpt->count() || trOpt->count()) s.placement.source = "command line";
+    (void)s.placement.toDisplay();  // singular placements fail here, before any work
+    s.vcpMm = vcpOpt->count() ? o->vcpMm : run.vcpMm.value_or(kDefaultVcpMm);
+    if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", num(s.vcpMm), "a finite distance in mm");
+    s.spp = sppOpt->count() ? o->spp : run.spp.value_or(1);
+    if (s.spp < 1) throw InputError("", "--spp", std::to_string(s.spp), "a whole number >= 1");
+    s.seed = seedOpt->count() ? o->runOpts.seed : run.seed.value_or(o->runOpts.seed);
+    std::string exposure = expOpt->count() ? o->exposure : run.exposure.value_or("auto");
+    if (exposure == "auto") {
+      s.autoExposure = true;
+    } else {
+      char* end = nullptr;
+      s.exposure = std::strtod(exposure.c_str(), &end);
+      if (exposure.empty() || *end || !(s.exposure > 0.0) || !std::isfinite(s.exposure))
+        throw InputError(expOpt->count() ? "" : run.file, expOpt->count() ? "--exposure" : "exposure",
+                         "\"" + exposure + "\"", "a number > 0 or auto");
+    }
+    s.gamut = parseGamut(gamutOpt->count() ? o->gamut : run.gamut.value_or("clip"));
+    std::string wb = wbOpt->count() ? o->whiteBalance : run.whiteBalance.value_or("none");
+    if (wb != "none" && wb != "d65") throw InputError("", "--white-balance", "\"" + wb + "\"", "none or d65");
+    s.whiteBalanceD65 = wb == "d65";
+    s.aovs = o->aovs;
+    s.progress = !o->quiet;
+
+    // Outputs: checked before the work starts.
+    requireExt(o->out, "--out", {".exr"}, "an OpenEXR file name (.exr)");
+    std::string png = pngOpt->count() ? o->png : (fs::path(o->out).replace_extension(".png")).string();
+    requireExt(png, "--png", {".png"}, "a PNG file name (.png)");
+    if (!o->preview.empty()) requireExt(o->preview, "--preview", {".png"}, "a PNG file name (.png)");
+    if (!o->sdf.empty()) requireExt(o->sdf, "--sdf", {".sdf", ".dat"}, "a Zemax source file name (.sdf or .dat)");
+
+    // Display and layout.
+    std::string displayPath = !o->display.empty() ? o->display : run.display.value_or(defaultDisplayPath());
+    Display d = loadDisplay(displayPath);
+    LayoutOverride lo;
+    if (layoutOpt->count()) lo.layout = o->layout;
+    else if (run.layout) lo.layout = *run.layout, lo.layoutKey = "layout (" + run.file + ")";
+    if (distOpt->count()) lo.viewingDistanceMm = o->viewingDistanceMm;
+    else if (run.viewingDistanceMm)
+      lo.viewingDistanceMm = *run.viewingDistanceMm, lo.distanceKey = "viewing_distance_mm (" + run.file + ")";
+    const EiLayout L = applyLayoutOverride(d, lo);
+    std::string triChoice = triOpt->count() ? o->triads : run.triadWavelengths.value_or("panel");
+    const TriadWavelengths tw = parseTriadWavelengths(d.panel, triChoice);
+
+    // Scene.
+    std::string scenePath = sceneOpt->count() ? o->scene : run.scene.value_or(dataPath("scenes/paper-fig7.json"));
+    requireExt(scenePath, "--scene", {".json"}, "an analytic scene (.json)");
+    std::unique_ptr<AnalyticScene> scene = AnalyticScene::load(scenePath);
+
+    if (!o->quiet) {
+      std::printf("display:     %s (%s layout, %d x %d EIs of %d x %d px, g = %s mm; panel %d x %d px)\n",
+                  d.name.c_str(), layoutName(L.kind), L.eiCols, L.eiRows, L.eiW, L.eiH, num(L.gapMm).c_str(),
+                  L.panelW, L.panelH);
+      std::printf("scene:       %s\n", scenePath.c_str());
+      std::printf("placement:   %s; VCP at z = %s mm\n", s.placement.describe().c_str(), num(s.vcpMm).c_str());
+      std::fflush(stdout);
+    }
+
+    const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    SynthesisResult r = synthesizeEia(L, d.panel, *scene, s);
+
+    // Outputs: each to a temporary, written concurrently (EXR and PNG compression are single
+    // threaded), renamed into place together only when all succeeded.
+    const auto tw0 = std::chrono::steady_clock::now();
+    OutputSet outputs;
+    const std::string exrTmp = outputs.add(o->out), pngTmp = outputs.add(png);
+    const std::string previewTmp = o->preview.empty() ? "" : outputs.add(o->preview);
+    const std::string sdfTmp = o->sdf.empty() ? "" : outputs.add(o->sdf);
+    PreviewResult pv;
+    if (!o->preview.empty()) {
+      PreviewSettings ps;
+      ps.seed = s.seed;
+      pv = renderPlacementPreview(L, *scene, s.placement.toDisplay(), s.vcpMm, ps);
+    }
+    std::vector<std::future<void>> writes;
+    writes.push_back(std::async(std::launch::async, [&] { writeImage(r.eia, exrTmp); }));
+    writes.push_back(std::async(std::launch::async, [&] { writeImage(encodeForPanel(r.eia, d.panel.eotf), pngTmp); }));
+    if (!previewTmp.empty()) writes.push_back(std::async(std::launch::async, [&] { writeImage(pv.image, previewTmp); }));
+    uint64_t triads = 0;
+    if (!sdfTmp.empty()) {
+      RaySet rays = generatePinholeRays(L);
+      TriadOptions to;
+      to.description = "inim triads: " + d.name + ", " + tw.source;
+      ProgressBar bar("triads", uint64_t(L.numRays()) * 3, !o->quiet && ProgressBar::stderrIsTerminal());
+      triads = writeTriadSdf(sdfTmp, rays, r.drive, tw, to, &bar);
+      bar.finish();
+    }
+    for (auto& w : writes) w.get();  // rethrows a writer's failure (the temporaries are removed)
+    outputs.commit();
+    const double writeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tw0).count();
+
+    for (const auto& w : r.stats.warnings) std::fprintf(stderr, "inim: warning: %s\n", w.c_str());
+    if (!o->quiet) {
+      std::string summary = summaryText(r.stats, s.gamut);  // warnings went to stderr already
+      std::string shown;
+      size_t pos = 0;
+      while (pos < summary.size()) {
+        size_t nl = summary.find('\n', pos);
+        std::string line = summary.substr(pos, nl == std::string::npos ? std::string::npos : nl - pos + 1);
+        if (line.rfind("warning:", 0) != 0) shown += line;
+        pos = nl == std::string::npos ? summary.size() : nl + 1;
+      }
+      std::printf("%s", shown.c_str());
+      std::printf("wrote:       %s (%d x %d, %s), %s", o->out.c_str(), r.eia.width, r.eia.height,
+                  s.aovs ? "R G B A Z" : "R G B", png.c_str());
+      if (!o->preview.empty())
+        std::printf(", %s (%d lenslets: %d real, %d virtual, %d on the MLA plane, %d missed; scene crosses the MLA "
+                    "at %d)",
+                    o->preview.c_str(), pv.lenslets, pv.real, pv.virtualHits, pv.onPlane, pv.missed,
+                    pv.crossingLenslets);
+      if (!o->sdf.empty())
+        std::printf(", %s (%llu triad rays at %s/%s/%s nm)", o->sdf.c_str(), (unsigned long long)triads,
+                    num(tw.nm[0]).c_str(), num(tw.nm[1]).c_str(), num(tw.nm[2]).c_str());
+      double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::printf("\ntotal:       %.2f s (loading %.2f s, synthesis %.2f s, writing %.2f s)\n", total, loadSeconds,
+                  r.stats.seconds, writeSeconds);
+    }
+  });
+}
+
+}  // namespace inim::cli

@@ -13,6 +13,7 @@ void addBenchCommand(CLI::App& app);
 void addDisplayCommand(CLI::App& app);  // inim display info
 void addRaysCommand(CLI::App& app);     // inim rays
 void addEiaCommand(CLI::App& app);      // inim eia
+void addTriadsCommand(CLI::App& app);   // inim triads export|form
 
 // Options every command that computes shares.
 struct RunOptions {

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   inim::cli::addDisplayCommand(app);
   inim::cli::addRaysCommand(app);
   inim::cli::addEiaCommand(app);
+  inim::cli::addTriadsCommand(app);
   inim::cli::addBenchCommand(app);
   try {
     app.parse(argc, argv);

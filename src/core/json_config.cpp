@@ -1,5 +1,6 @@
 #include "core/json_config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -46,10 +47,37 @@ bool JsonObject::has(const std::string& key) const {
   return true;
 }
 
+// Levenshtein distance, for "did you mean" hints on misspelt keys.
+static size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string JsonObject::closestKey(const std::string& key) const {
+  std::string best;
+  size_t bestD = 3;  // up to 2 edits
+  for (auto it = j_.begin(); it != j_.end(); ++it) {
+    size_t d = editDistance(it.key(), key);
+    if (d < bestD) bestD = d, best = it.key();
+  }
+  return best;
+}
+
 const Json& JsonObject::get(const std::string& key) const {
   asked_.insert(key);
   auto it = j_.find(key);
-  if (it == j_.end()) fail(key, "(missing)", "this required key");
+  if (it == j_.end()) {
+    std::string near = closestKey(key);
+    fail(key, "(missing)",
+         near.empty() ? "this required key" : "this required key (did you mean it instead of '" + near + "'?)");
+  }
   used_.insert(key);
   return *it;
 }

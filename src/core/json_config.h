@@ -58,6 +58,7 @@ class JsonObject {
 
  private:
   const Json& get(const std::string& key) const;
+  std::string closestKey(const std::string& key) const;  // a present key within 2 edits
   const Json& j_;
   std::string file_, path_;
   mutable std::set<std::string> used_;   // keys present and read

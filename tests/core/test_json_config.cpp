@@ -38,3 +38,14 @@ TEST(JsonConfig, ChoiceListsAllowedValues) {
     EXPECT_NE(std::string(e.what()).find("sphear"), std::string::npos);
   }
 }
+
+TEST(JsonConfig, MissingRequiredKeyPointsAtTheMisspelling) {
+  Json j = Json::parse(R"({"raduis_mm": 3})");
+  JsonObject o(j, "s.json", "objects[0]");
+  try {
+    o.positive("radius_mm");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("raduis_mm"), std::string::npos) << e.what();
+  }
+}

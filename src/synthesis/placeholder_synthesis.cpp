@@ -1,1 +1,0 @@
-// placeholder: stage synthesis is being written

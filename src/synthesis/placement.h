@@ -1,0 +1,65 @@
+#pragma once
+// Where the field sits in the display frame (DESIGN.md section 1, step 3): a placement
+// transform field -> display, display = T(translate) * R(rotate) * S(scale) * field.
+//
+// `scale` is display millimetres per field unit (per axis, or uniform). A trained radiance
+// field lives in its own units: the paper placed its NeRF at 0.0075 field units per mm, i.e.
+// scale = 1 / 0.0075 = 133.3 mm per field unit; run files may give it that way too
+// ("field_units_per_mm"). Analytic scenes are already in mm (scale 1).
+//
+// The transform decides which parts of the scene are real images (z > 0, in front of the MLA)
+// and which are virtual (z < 0, behind it).
+//
+// A run file (JSON) holds the placement and, optionally, the other synthesis settings, so a
+// run can be repeated; command-line options override it:
+//   {
+//     "placement": {"scale": 1 | [sx, sy, sz] | "field_units_per_mm": 0.0075,
+//                   "rotate_deg": [rx, ry, rz], "translate_mm": [x, y, z]},
+//     "display": "file.json", "scene": "file.json",      (paths relative to the run file)
+//     "vcp_mm": 100, "layout": "parallel", "viewing_distance_mm": 350, "spp": 4,
+//     "exposure": 1 | "auto", "gamut": "clip" | "desaturate", "white_balance": "none" | "d65",
+//     "triad_wavelengths": "panel" | "paper" | [656, 566, 471], "seed": 1
+//   }
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/geometry.h"
+#include "core/transform.h"
+
+namespace inim {
+
+struct Placement {
+  Vec3d scale{1.0, 1.0, 1.0};      // display mm per field unit, per axis
+  Vec3d rotateDeg{0.0, 0.0, 0.0};  // about x, then y, then z (R = Rz Ry Rx), degrees
+  Vec3d translateMm{0.0, 0.0, 0.0};
+  // Where the values came from ("command line" or the run file), for error messages.
+  std::string source = "command line";
+  std::string scaleKey = "--scale";
+
+  // The field -> display transform. InputError naming `source` and the scale key when the
+  // scale is singular (a zero or non-finite factor) or any value is not finite.
+  Transform toDisplay() const;
+  bool isIdentity() const;
+  std::string describe() const;  // "scale 1, rotate (0, 0, 0) deg, translate (0, 0, 0) mm"
+};
+
+// Settings a run file may carry (absent = not given; the command line or defaults decide).
+struct RunFile {
+  std::string file;
+  std::optional<Placement> placement;
+  std::optional<std::string> display, scene;  // resolved against the run file's folder
+  std::optional<double> vcpMm, viewingDistanceMm;
+  std::optional<std::string> layout, exposure, gamut, whiteBalance, triadWavelengths;
+  std::optional<int> spp;
+  std::optional<uint64_t> seed;
+};
+
+// Strict reader (unknown keys are errors naming the file and key).
+RunFile loadRunFile(const std::string& path);
+
+// Parses "x,y,z" (or one number when `allowScalar`, meaning x = y = z) from the command
+// line; InputError naming `key` otherwise.
+Vec3d parseVec3(const std::string& text, const std::string& key, bool allowScalar = false);
+
+}  // namespace inim

@@ -1,0 +1,359 @@
+// Command-line tests of `inim display info`, `inim rays`, `inim eia` and `inim triads`: they run
+// the built binary (INIM_BINARY; the environment variable INIM_TEST_BINARY overrides it).
+// Physics end to end with the real analytic scene (a point image lands on the predicted
+// pixels), determinism across thread counts, and bad input: exit status 2, a message naming
+// the file / key / value, and no output file left behind.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/image.h"
+#include "display/display.h"
+#include "display/ei_layout.h"
+#include "rays/pinhole_rays.h"
+#include "rays/ray_binary.h"
+#include "synthesis/eia_synthesis.h"
+
+namespace fs = std::filesystem;
+using namespace inim;
+
+namespace {
+
+std::string binary() {
+  if (const char* b = std::getenv("INIM_TEST_BINARY"); b && *b) return b;
+  return INIM_BINARY;
+}
+
+fs::path scratch() {
+  static fs::path dir = [] {
+    fs::path d = fs::temp_directory_path() / ("inim_test_cli_eia_" + std::to_string(getpid()));
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+struct Cleanup {
+  ~Cleanup() {
+    std::error_code ec;
+    fs::remove_all(fs::temp_directory_path() / ("inim_test_cli_eia_" + std::to_string(getpid())), ec);
+  }
+} cleanup;
+
+std::string path(const std::string& name) { return (scratch() / name).string(); }
+
+struct Result {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& args) {
+  std::string cmd = binary() + " " + args + " 2>&1";
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
+  int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+void writeText(const std::string& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+}
+
+std::string data(const std::string& rel) { return std::string(INIM_SOURCE_DATA_DIR) + "/" + rel; }
+
+// A small display: K x R EIs of n px (0.1 mm pixels), panel with a 3 px border.
+std::string smallDisplayJson(int K, int R, int n, double gap = 3.0, double pitch = 0.9, int panelW = 0,
+                             int panelH = 0) {
+  if (!panelW) panelW = K * n + 6;
+  if (!panelH) panelH = R * n + 6;
+  std::ostringstream s;
+  s << R"({"name": "small test display",
+  "panel": {"name": "test panel", "resolution_px": [)"
+    << panelW << ", " << panelH << R"(], "pixel_pitch_mm": 0.1,
+            "primaries": {"R": {"gaussian": {"mean_nm": 625, "fwhm_nm": 35}},
+                          "G": {"gaussian": {"mean_nm": 530, "fwhm_nm": 35}},
+                          "B": {"gaussian": {"mean_nm": 460, "fwhm_nm": 30}}},
+            "peak_luminance_cd_m2": 500},
+  "mla": {"name": "test mla", "pitch_mm": )"
+    << pitch << R"(, "focal_length_mm": 3.0, "substrate_thickness_mm": 1.0, "material": "PMMA"},
+  "generation_gap_mm": )"
+    << gap << R"(, "reconstruction_gap_mm": 3.5, "ei_px": )" << n << R"(, "ei_count": [)" << K << ", " << R << "]}";
+  return s.str();
+}
+
+std::string smallDisplay() {
+  static std::string file = [] {
+    std::string f = path("small.json");
+    writeText(f, smallDisplayJson(11, 9, 9));
+    return f;
+  }();
+  return file;
+}
+
+
+// Expects a bad-input failure: status 2, the message contains every `needle`, and no file
+// of `outputs` exists (nor a temporary beside it).
+void expectBadInput(const std::string& args, std::initializer_list<std::string> needles,
+                    std::initializer_list<std::string> outputs) {
+  Result r = run(args);
+  EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+  EXPECT_NE(r.output.find("inim: error:"), std::string::npos) << r.output;
+  for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "message lacks '" << n << "':\n" << r.output;
+  for (const auto& o : outputs) {
+    EXPECT_FALSE(fs::exists(o)) << o << " was left behind by: " << args;
+    for (const auto& e : fs::directory_iterator(fs::path(o).parent_path()))
+      EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << "temporary left: " << e.path();
+  }
+}
+
+}  // namespace
+
+TEST(CliDisplay, InfoTextAndJson) {
+  Result r = run("display info");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("paper prototype"), std::string::npos);
+  EXPECT_NE(r.output.find("18.857"), std::string::npos) << "L = g f / (g - f) at g = 4";
+  r = run("display info " + smallDisplay() + " --json");
+  EXPECT_EQ(r.status, 0) << r.output;
+  Json j = Json::parse(r.output);
+  EXPECT_EQ(j["name"], "small test display");
+}
+
+TEST(CliRays, TextBinaryAndConversion) {
+  std::string txt = path("rays.txt"), bin = path("rays.irays"), back = path("rays_back.irays");
+  Result r = run("rays --display " + smallDisplay() + " --out " + txt);
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = run("rays --display " + smallDisplay() + " --out " + bin);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(fs::file_size(bin), kRayBinaryHeaderSize + 24u * 11 * 9 * 81);
+  // The paper's macro format (UTF-16LE, CRLF, header) reads back as the same rays.
+  std::string macro = path("rays_macro.txt");
+  r = run("rays --display " + smallDisplay() + " --zemax-macro --out " + macro);
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = run("rays --in " + macro + " --out " + back);
+  ASSERT_EQ(r.status, 0) << r.output;
+  RaySet a = readRayBinary(bin), b = readRayBinary(back);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) ASSERT_NEAR(a.dz[i], b.dz[i], 1e-7f);
+  // The macro's single-EI file: the corner direction of a 25 x 25 EI of 0.0395 mm at g = 3 mm.
+  std::string ei = path("ei.txt");
+  r = run("rays --ei 0,0 --gap-mm 3 --out " + ei);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(ei);
+  std::string first;
+  std::getline(in, first);
+  EXPECT_EQ(first, "0.00000000, 0.00000000, 0.00000000, 0.15419750, 0.15419750, 0.97593353");
+}
+
+TEST(CliRays, BadInput) {
+  std::string out = path("bad_rays.txt");
+  expectBadInput("rays --display " + smallDisplay() + " --gap-mm 0 --out " + out, {"--gap-mm", "0"}, {out});
+  expectBadInput("rays --display " + smallDisplay() + " --gap-mm -2 --out " + out, {"--gap-mm", "-2"}, {out});
+  expectBadInput("rays --display " + smallDisplay() + " --out " + path("rays.bin"), {"--out", "rays.bin"},
+                 {path("rays.bin")});
+  // Zemax text with a wrong line after the first ray.
+  std::string badTxt = path("bad_zemax.txt"), conv = path("bad_conv.irays");
+  writeText(badTxt, "header line\n0.1, 0.2, 0.0, 0.0, 0.0, 1.0\n0.1, 0.2, 0.0, oops\n");
+  expectBadInput("rays --in " + badTxt + " --out " + conv, {badTxt}, {conv});
+  // Binary rays of the wrong size, and with a wrong magic.
+  std::string goodBin = path("good.irays"), badBin = path("bad_size.irays");
+  ASSERT_EQ(run("rays --display " + smallDisplay() + " --out " + goodBin).status, 0);
+  fs::copy_file(goodBin, badBin);
+  fs::resize_file(badBin, fs::file_size(goodBin) - 24);
+  expectBadInput("rays --in " + badBin + " --out " + path("conv.txt"), {badBin}, {path("conv.txt")});
+  std::string badMagic = path("bad_magic.irays");
+  writeText(badMagic, std::string(64, 'x'));
+  expectBadInput("rays --in " + badMagic + " --out " + path("conv2.txt"), {badMagic}, {path("conv2.txt")});
+}
+
+// The real analytic scene: a small emitter (scenes/test/point-sphere.json, placed by the
+// command-line placement) lands on the pixel pinhole geometry predicts, in at least 95 % of the
+// EIs that see it, behind the MLA (virtual) and in front of it (real); every lit pixel is within
+// a pixel or two of the prediction; the depth channel gives its display z; and the output is
+// bit-identical on 1 and 2 threads.
+class CliPointImage : public ::testing::TestWithParam<double> {};
+
+TEST_P(CliPointImage, OnPredictedPixelsWithAnalyticScene) {
+  const double z = GetParam(), scale = 3.0, radius = 0.25 * scale;
+  // The file's sphere is at (0, 0, -10): scaled by 3 it is at z = -30; translate to z.
+  char place[128];
+  std::snprintf(place, sizeof place, " --scale %g --translate-mm 0,0,%g", scale, z + 30.0);
+  const std::string tag = z > 0 ? "real" : "virtual";
+  std::string out1 = path("point_" + tag + "1.exr"), out2 = path("point_" + tag + "2.exr");
+  std::string preview = path("point_" + tag + "_preview.png");
+  std::string args = "eia --display " + smallDisplay() + " --scene " + data("scenes/test/point-sphere.json") + place +
+                     " --vcp-mm 40 --aovs --exposure 0.05 --quiet";
+  Result r = run(args + " --threads 1 --out " + out1 + " --preview " + preview);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(path("point_" + tag + "1.png")));
+  EXPECT_TRUE(fs::exists(preview));
+  r = run(args + " --threads 2 --out " + out2);
+  ASSERT_EQ(r.status, 0) << r.output;
+  Image a = readImage(out1), b = readImage(out2);
+  ASSERT_EQ(a.data.size(), b.data.size());
+  EXPECT_EQ(0, std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float))) << "thread count changed the EIA";
+
+  Display d = loadDisplay(smallDisplay());
+  EiLayout L = computeLayout(d);
+  ASSERT_EQ(a.width, L.panelW);
+  ASSERT_EQ(a.channels, (std::vector<std::string>{"R", "G", "B", "A", "Z"}));
+  const Point3d p(0.0, 0.0, z);
+  int seen = 0, lit = 0, depthOk = 0, litFar = 0, litTotal = 0;
+  for (int k = 0; k < L.eiCols; ++k)
+    for (int l = 0; l < L.eiRows; ++l) {
+      auto pred = predictPixelForPoint(L, k, l, p);
+      for (int i = 0; i < L.eiW; ++i)
+        for (int j = 0; j < L.eiH; ++j) {
+          PixelCoord px = eiaPixel(L, {k, l, i, j});
+          int x = L.panelCol0 + px.col, y = L.panelRow0 + px.row;
+          bool on = a.at(x, y, 0) + a.at(x, y, 1) + a.at(x, y, 2) > 0.0f;
+          litTotal += on;
+          // Lit: within 2 px of the prediction, or (EIs that see only the emitter's rim, whose
+          // centre projects just outside the EI) within 2 px of the EI's border.
+          bool nearPred = pred && std::max(std::abs(i - pred->i), std::abs(j - pred->j)) <= 2;
+          bool nearBorder = !pred && std::min({i, j, L.eiW - 1 - i, L.eiH - 1 - j}) < 2;
+          if (on && !nearPred && !nearBorder) ++litFar;
+        }
+      if (!pred) continue;
+      ++seen;
+      PixelCoord px = eiaPixel(L, *pred);
+      int x = L.panelCol0 + px.col, y = L.panelRow0 + px.row;
+      if (a.at(x, y, 0) + a.at(x, y, 1) + a.at(x, y, 2) > 0.0f) ++lit;
+      float Z = a.at(x, y, 4);
+      if (a.at(x, y, 3) == 1.0f && Z >= z - 0.01 && Z <= z + radius + 0.01) ++depthOk;
+    }
+  EXPECT_GE(seen, 20);
+  EXPECT_GE(lit, int(std::ceil(0.95 * seen))) << lit << " of " << seen;
+  EXPECT_GE(depthOk, int(std::ceil(0.95 * seen)));
+  EXPECT_EQ(litFar, 0) << "lit pixels far from the predicted ones";
+  std::printf("  emitter at z = %+g mm: predicted pixel lit in %d of %d EIs; %d of %d lit pixels > 2 px away\n", z,
+              lit, seen, litFar, litTotal);
+}
+
+INSTANTIATE_TEST_SUITE_P(RealAndVirtual, CliPointImage, ::testing::Values(-30.0, 15.0));
+
+TEST(CliEia, SceneBehindVcpWarnsEmptyAndSucceeds) {
+  std::string out = path("empty.exr");
+  Result r = run("eia --display " + smallDisplay() + " --scene " + data("scenes/test/point-sphere.json") +
+                 " --translate-mm 0,0,80 --vcp-mm 50 --out " + out);
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("warning"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("empty"), std::string::npos) << r.output;
+  ASSERT_TRUE(fs::exists(out));
+  Image img = readImage(out);
+  for (float v : img.data) ASSERT_EQ(v, 0.0f);
+}
+
+TEST(CliEia, BadInputLeavesNoOutput) {
+  const std::string out = path("bad.exr"), png = path("bad.png"), sdf = path("bad.sdf"), pv = path("bad_pv.png");
+  const std::string outs = " --out " + out + " --sdf " + sdf + " --preview " + pv;
+  const std::string scene = " --scene " + data("scenes/test/point-sphere.json");
+  // EI grid larger than the panel.
+  std::string big = path("big.json");
+  writeText(big, smallDisplayJson(11, 9, 9, 3.0, 0.9, 60, 60));
+  expectBadInput("eia --display " + big + scene + outs, {big, "ei_count", "[11, 9]"}, {out, png, sdf, pv});
+  // Gap <= 0 and pitch <= 0.
+  std::string gap0 = path("gap0.json");
+  writeText(gap0, smallDisplayJson(5, 5, 9, 0.0));
+  expectBadInput("eia --display " + gap0 + scene + outs, {gap0, "generation_gap_mm", "0"}, {out, png, sdf, pv});
+  std::string pitch0 = path("pitch0.json");
+  writeText(pitch0, smallDisplayJson(5, 5, 9, 3.0, -1.0));
+  expectBadInput("eia --display " + pitch0 + scene + outs, {pitch0, "pitch_mm", "-1"}, {out, png, sdf, pv});
+  // Toed-in EIs that would overlap at the given viewing distance.
+  // Toed-in EIs that would overlap: lens pitch 0.8 mm < EI width 0.9 mm, EI pitch P (1 + g/D) =
+  // 0.808 mm at D = 300 mm.
+  std::string narrow = path("narrow_lenses.json");
+  writeText(narrow, smallDisplayJson(5, 5, 9, 3.0, 0.8));
+  expectBadInput("eia --display " + narrow + scene + " --layout toed-in --viewing-distance-mm 300" + outs,
+                 {narrow, "--viewing-distance-mm", "300", "overlap"}, {out, png, sdf, pv});
+  expectBadInput("eia --display " + smallDisplay() + scene + " --layout toed-in --viewing-distance-mm 1" + outs,
+                 {"ei_count", "toed-in", "fits the panel"}, {out, png, sdf, pv});
+  expectBadInput("eia --display " + smallDisplay() + scene + " --layout toed-in --viewing-distance-mm -5" + outs,
+                 {"--viewing-distance-mm", "-5"}, {out, png, sdf, pv});
+  expectBadInput("eia --display " + smallDisplay() + scene + " --layout diagonal" + outs, {"--layout", "diagonal"},
+                 {out, png, sdf, pv});
+  // A singular placement.
+  expectBadInput("eia --display " + smallDisplay() + scene + " --scale 1,0,1" + outs, {"--scale", "1, 0, 1"},
+                 {out, png, sdf, pv});
+  std::string run0 = path("run_singular.json");
+  writeText(run0, R"({"placement": {"scale": 0}})");
+  expectBadInput("eia --display " + smallDisplay() + scene + " --run " + run0 + outs, {run0, "placement.scale"},
+                 {out, png, sdf, pv});
+  std::string runUnknown = path("run_unknown.json");
+  writeText(runUnknown, R"({"vcp": 10})");
+  expectBadInput("eia --display " + smallDisplay() + scene + " --run " + runUnknown + outs, {runUnknown, "vcp"},
+                 {out, png, sdf, pv});
+  // Bad settings.
+  expectBadInput("eia --display " + smallDisplay() + scene + " --spp 0" + outs, {"--spp", "0"}, {out, png, sdf, pv});
+  expectBadInput("eia --display " + smallDisplay() + scene + " --exposure -1" + outs, {"--exposure", "-1"},
+                 {out, png, sdf, pv});
+  expectBadInput("eia --display " + smallDisplay() + scene + " --gamut wrap" + outs, {"--gamut", "wrap"},
+                 {out, png, sdf, pv});
+  expectBadInput("eia --display " + smallDisplay() + scene + " --triad-wavelengths 656,566" + outs,
+                 {"--triad-wavelengths", "656,566"}, {out, png, sdf, pv});
+  expectBadInput("eia --display " + smallDisplay() + scene + " --out " + path("bad.tiff"), {"--out", "bad.tiff"},
+                 {path("bad.tiff")});
+  // A scene file that does not exist.
+  expectBadInput("eia --display " + smallDisplay() + " --scene " + path("nope.json") + outs, {"nope.json"},
+                 {out, png, sdf, pv});
+}
+
+// The triads of a synthesized EIA, written as SDF and formed again on the detector, give the
+// EIA back; Zemax SDF files with a wrong header or size are rejected.
+TEST(CliTriads, ExportFormRoundTripAndBadSdf) {
+  const std::string eia = path("tri.exr"), sdf = path("tri.sdf"), formed = path("tri_formed.exr");
+  Result r = run("eia --display " + smallDisplay() + " --scene " + data("scenes/paper-fig7.json") +
+                 " --quiet --out " + eia + " --sdf " + sdf + " --triad-wavelengths paper");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = run("triads form --display " + smallDisplay() + " --sdf " + sdf + " --triad-wavelengths 656,566,471 --out " +
+          formed);
+  ASSERT_EQ(r.status, 0) << r.output;
+  Image a = readImage(eia), b = readImage(formed);
+  ASSERT_EQ(a.data.size(), b.data.size());
+  double maxErr = 0.0;
+  for (size_t i = 0; i < a.data.size(); ++i) maxErr = std::max(maxErr, double(std::abs(a.data[i] - b.data[i])));
+  EXPECT_LE(maxErr, 1e-6);
+  // export from the EXR gives the same file as eia --sdf.
+  const std::string sdf2 = path("tri2.sdf");
+  r = run("triads export --display " + smallDisplay() + " --eia " + eia + " --triad-wavelengths paper --out " + sdf2);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(fs::file_size(sdf2), fs::file_size(sdf));
+
+  // Wrong size (truncated), wrong identifier, wrong ray format.
+  const std::string out = path("sdf_bad.exr");
+  std::string trunc = path("trunc.sdf");
+  fs::copy_file(sdf, trunc);
+  fs::resize_file(trunc, fs::file_size(sdf) - 7);
+  expectBadInput("triads form --display " + smallDisplay() + " --sdf " + trunc + " --out " + out, {trunc}, {out});
+  std::string badId = path("bad_id.sdf");
+  fs::copy_file(sdf, badId);
+  {
+    std::fstream f(badId, std::ios::in | std::ios::out | std::ios::binary);
+    int32_t v = 1011;
+    f.write(reinterpret_cast<const char*>(&v), 4);
+  }
+  expectBadInput("triads form --display " + smallDisplay() + " --sdf " + badId + " --out " + out, {badId, "1011"},
+                 {out});
+  std::string tiny = path("tiny.sdf");
+  writeText(tiny, std::string(100, '\0'));
+  expectBadInput("triads form --display " + smallDisplay() + " --sdf " + tiny + " --out " + out, {tiny}, {out});
+  // An EIA of the wrong size.
+  std::string wrongEia = path("wrong.exr");
+  writeImage(Image(10, 10, {"R", "G", "B"}), wrongEia);
+  expectBadInput("triads export --display " + smallDisplay() + " --eia " + wrongEia + " --out " + path("w.sdf"),
+                 {wrongEia, "10 x 10"}, {path("w.sdf")});
+}

@@ -1,0 +1,164 @@
+#pragma once
+// Shared helpers for the synthesis tests: small displays and analytic mock fields (so these
+// tests do not depend on the Embree scene).
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "display/display.h"
+#include "display/ei_layout.h"
+#include "field/field.h"
+#include "spectral/spectrum.h"
+
+namespace synth_test {
+
+using namespace inim;
+namespace fs = std::filesystem;
+
+inline fs::path scratchDir() {
+  return fs::temp_directory_path() / ("inim_test_synthesis_" + std::to_string(getpid()));
+}
+inline std::string scratchPath(const std::string& name) {
+  fs::path dir = scratchDir();
+  fs::create_directories(dir);
+  return (dir / name).string();
+}
+
+// A small display on the default panel's primaries: K x R EIs of n x n pixels of `pixelMm`,
+// on a panel `border` px larger than the EIA on each side.
+inline Display smallDisplay(int K = 9, int R = 7, int n = 9, double pixelMm = 0.1, double gap = 3.0,
+                            EiLayoutKind layout = EiLayoutKind::Parallel, double lensPitch = 0.0,
+                            double viewingDistance = 300.0, int border = 3) {
+  Display d = loadDisplay(defaultDisplayPath());
+  d.file = "small-test-display";
+  d.panel.pixelPitchMm = pixelMm;
+  d.panel.widthPx = K * (n + 2) + 2 * border;  // room for toed-in EIs
+  d.panel.heightPx = R * (n + 2) + 2 * border;
+  d.mla.pitchMm = lensPitch > 0.0 ? lensPitch : n * pixelMm;
+  d.generationGapMm = d.reconstructionGapMm = gap;
+  d.eiWidthPx = d.eiHeightPx = n;
+  d.eiCols = K;
+  d.eiRows = R;
+  d.layout = layout;
+  d.viewingDistanceMm = viewingDistance;
+  return d;
+}
+
+// Spheres in the field frame. Each is either a uniform emitter or a "soft" one whose radiance
+// falls off as exp(-b^2 / sigma^2) with the ray's distance b from the centre (so the ray
+// closest to the centre is the brightest). Spectral (emits `spectrum`, or rgb's luminance as a
+// flat spectrum) or RGB (lin_rec709).
+struct MockSphere {
+  Vec3d c{0.0};
+  double r = 1.0;
+  Vec3 rgb{1.0f};
+  double sigma = 0.0;  // 0: uniform
+  SpectrumPtr spectrum;
+};
+
+class MockField final : public Field {
+ public:
+  MockField(std::vector<MockSphere> spheres, FieldEncoding enc, float noise = 0.0f)
+      : spheres_(std::move(spheres)), enc_(enc), noise_(noise) {}
+  FieldEncoding encoding() const override { return enc_; }
+  void query(std::span<const FieldRay> rays, std::span<const SampledWavelengths> lambda,
+             std::span<FieldSample> out, uint64_t seed) const override {
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const FieldRay& fr = rays[i];
+      FieldSample fs;
+      Vec3d o(fr.o), d(fr.d);
+      double best = std::numeric_limits<double>::infinity();
+      const MockSphere* hit = nullptr;
+      double bestB = 0.0;
+      for (const MockSphere& s : spheres_) {
+        Vec3d oc = s.c - o;
+        double tca = glm::dot(oc, d);
+        double b2 = glm::dot(oc, oc) - tca * tca;
+        if (b2 > s.r * s.r) continue;
+        double th = std::sqrt(s.r * s.r - b2);
+        double t0 = tca - th, t1 = tca + th;
+        double t = t0 >= fr.tNear ? t0 : t1 >= fr.tNear ? t1 : -1.0;
+        if (t < fr.tNear || t > fr.tFar || t >= best) continue;
+        best = t;
+        hit = &s;
+        bestB = std::sqrt(std::max(0.0, b2));
+      }
+      if (hit) {
+        float w = hit->sigma > 0.0 ? float(std::exp(-bestB * bestB / (hit->sigma * hit->sigma))) : 1.0f;
+        if (noise_ > 0.0f) w *= 1.0f + noise_ * (Rng::forSample(seed, fr.id, fr.sample).uniform() - 0.5f);
+        if (enc_ == FieldEncoding::Spectral) {
+          if (hit->spectrum)
+            fs.L = hit->spectrum->sample(lambda[i]) * w;
+          else
+            fs.L = SampledSpectrum(w * (0.2126f * hit->rgb.x + 0.7152f * hit->rgb.y + 0.0722f * hit->rgb.z));
+        } else {
+          fs.rgb = hit->rgb * w;
+        }
+        fs.depth = float(best);
+        fs.opacity = 1.0f;
+      }
+      out[i] = fs;
+    }
+  }
+  void bounds(Point3& lo, Point3& hi) const override {
+    Vec3d a(std::numeric_limits<double>::infinity()), b(-std::numeric_limits<double>::infinity());
+    for (const auto& s : spheres_) {
+      a = glm::min(a, s.c - Vec3d(s.r));
+      b = glm::max(b, s.c + Vec3d(s.r));
+    }
+    if (spheres_.empty()) a = b = Vec3d(0.0);
+    lo = Point3(a);
+    hi = Point3(b);
+  }
+
+ private:
+  std::vector<MockSphere> spheres_;
+  FieldEncoding enc_;
+  float noise_;
+};
+
+// Ray-sphere entry distance (display frame, double), or nullopt.
+inline std::optional<double> sphereEntry(const Vec3d& o, const Vec3d& d, const Vec3d& c, double r) {
+  Vec3d oc = c - o;
+  double tca = glm::dot(oc, d), b2 = glm::dot(oc, oc) - tca * tca;
+  if (b2 > r * r) return std::nullopt;
+  double t0 = tca - std::sqrt(r * r - b2);
+  if (t0 < 0.0) return std::nullopt;
+  return t0;
+}
+
+// A spectrum defined by a lambda.
+template <class F>
+class FnSpectrum final : public Spectrum {
+ public:
+  explicit FnSpectrum(F f, float maxV = 1.0f) : f_(f), max_(maxV) {}
+  float operator()(float l) const override { return f_(l); }
+  float maxValue() const override { return max_; }
+
+ private:
+  F f_;
+  float max_;
+};
+template <class F>
+SpectrumPtr makeSpectrum(F f) {
+  return std::make_shared<FnSpectrum<F>>(f);
+}
+
+template <class F>
+InputError expectInputError(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no InputError thrown";
+  return InputError("", "", "", "");
+}
+
+}  // namespace synth_test
