@@ -1,0 +1,1 @@
+// placeholder: stage analysis is being written

@@ -1,0 +1,1 @@
+// placeholder: stage mla is being written

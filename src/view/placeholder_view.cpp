@@ -1,0 +1,1 @@
+// placeholder: stage view is being written
