@@ -17,14 +17,13 @@ namespace inim {
 
 struct PanelArrival {
   Point3 p;               // where the ray meets the panel's emitting plane z = -g (display frame, mm)
-  Vec3 d;                 // unit direction there, pointing back toward the viewer's side... see below
+  Vec3 d;                 // unit direction of travel of the traced ray there (d.z < 0)
   float throughput = 1;   // Fresnel / absorption along the way (MC weights included)
   int lensletK = -1;      // lenslet the ray left through on its way to the panel (column from left)
   int lensletL = -1;      // (row from top); -1 when it missed every lenslet aperture
 };
-// Convention for PanelArrival::d: the direction of travel of the traced (backward) ray at the
-// panel, i.e. pointing into the panel (d.z < 0). The light the panel emits toward the viewer
-// travels along -d; the emission angle is measured between -d and +z.
+// The light the panel emits toward the viewer travels along -d; its emission angle is the
+// angle between -d and +z.
 
 class MlaModel {
  public:
