@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian packages inim needs (only those missing) and builds it (Release, -j2).
-# Usage: scripts/setup.sh            (sourced by run-default.sh and test.sh)
+# Usage: scripts/setup.sh [TARGET...]   (run by run-default.sh and test.sh; default: all targets)
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${INIM_BUILD_DIR:-$ROOT/build/release}"
@@ -25,5 +25,9 @@ fi
 
 echo "setup: configuring and building Release in $BUILD_DIR (-j2)"
 cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$BUILD_DIR" -j2 "$@"
+if [ $# -gt 0 ]; then
+  cmake --build "$BUILD_DIR" -j2 --target "$@"
+else
+  cmake --build "$BUILD_DIR" -j2
+fi
 echo "setup: built $BUILD_DIR/inim"
