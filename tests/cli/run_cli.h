@@ -11,8 +11,8 @@ struct CliResult {
   std::string output;  // stdout and stderr
 };
 
-inline CliResult runInim(const std::string& args) {
-  std::string cmd = std::string(INIM_BINARY) + " " + args + " 2>&1";
+inline CliResult runInimBinary(const std::string& binary, const std::string& args) {
+  std::string cmd = binary + " " + args + " 2>&1";
   CliResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
@@ -23,3 +23,5 @@ inline CliResult runInim(const std::string& args) {
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   return r;
 }
+
+inline CliResult runInim(const std::string& args) { return runInimBinary(INIM_BINARY, args); }

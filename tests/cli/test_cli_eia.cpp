@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli/run_cli.h"
 #include "core/image.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
@@ -50,23 +51,8 @@ struct Cleanup {
 
 std::string path(const std::string& name) { return (scratch() / name).string(); }
 
-struct Result {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-Result run(const std::string& args) {
-  std::string cmd = binary() + " " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-  int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+using Result = CliResult;
+Result run(const std::string& args) { return runInimBinary(binary(), args); }
 
 void writeText(const std::string& file, const std::string& text) {
   std::ofstream out(file, std::ios::binary);
