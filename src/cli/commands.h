@@ -14,6 +14,8 @@ void addDisplayCommand(CLI::App& app);  // inim display info
 void addRaysCommand(CLI::App& app);     // inim rays
 void addEiaCommand(CLI::App& app);      // inim eia
 void addTriadsCommand(CLI::App& app);   // inim triads export|form
+void addCompareCommand(CLI::App& app);  // inim compare A B
+void addLensCommand(CLI::App& app);     // inim lens info FILE
 
 // Options every command that computes shares.
 struct RunOptions {

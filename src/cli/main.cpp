@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   inim::cli::addRaysCommand(app);
   inim::cli::addEiaCommand(app);
   inim::cli::addTriadsCommand(app);
+  inim::cli::addCompareCommand(app);
+  inim::cli::addLensCommand(app);
   inim::cli::addBenchCommand(app);
   try {
     app.parse(argc, argv);

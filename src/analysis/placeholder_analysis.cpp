@@ -1,1 +1,0 @@
-// placeholder: stage analysis is being written

@@ -1,0 +1,57 @@
+// inim lens info FILE [--json] [--thickness-convention after|before] [--wavelength-nm W]:
+// first-order properties of a camera lens (EFL, BFL, FFL, f-number, pupils, principal
+// planes), found by real ray tracing of near-axis rays.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "camera/lens_analysis.h"
+#include "camera/lens_loader.h"
+#include "cli/commands.h"
+#include "core/error.h"
+
+namespace inim::cli {
+
+void addLensCommand(CLI::App& app) {
+  auto* lens = app.add_subcommand("lens", "Camera lens prescriptions (optics/lenses/*.dat, *.json)");
+  lens->require_subcommand(1);
+  struct Opts {
+    std::string file;
+    std::string convention;
+    double wavelengthNm = kLensReferenceLambdaNm;
+    bool json = false;
+  };
+  auto opts = std::make_shared<Opts>();
+  auto* info = lens->add_subcommand(
+      "info",
+      "Print EFL, BFL, FFL, f-number, entrance and exit pupils and principal planes, found by real ray tracing");
+  info->add_option("FILE", opts->file,
+                   "Lens file (pbrt-v4 .dat or inim .json) or a catalog name under optics/lenses/ (e.g. dgauss.50mm)")
+      ->required();
+  info->add_flag("--json", opts->json, "Print JSON (keys efl_mm, bfl_mm, ffl_mm, f_number, entrance_pupil, ...)");
+  info->add_option("--thickness-convention", opts->convention,
+                   "Override the file's thickness convention: 'after' (distance to the next surface, pbrt/Zemax) "
+                   "or 'before' (distance from the previous surface)")
+      ->check(CLI::IsMember({"after", "before"}));
+  info->add_option("--wavelength-nm", opts->wavelengthNm, "Wavelength of the trace, nm (360..830)")
+      ->capture_default_str();
+  info->callback([opts] {
+    if (!std::isfinite(opts->wavelengthNm) || opts->wavelengthNm < 360.0 || opts->wavelengthNm > 830.0)
+      throw InputError("", "--wavelength-nm", std::to_string(opts->wavelengthNm), "a wavelength in 360..830 nm");
+    LensLoadOptions lo;
+    if (opts->convention == "after") lo.thicknessConvention = ThicknessConvention::After;
+    if (opts->convention == "before") lo.thicknessConvention = ThicknessConvention::Before;
+    const LensSystem l = loadLens(opts->file, lo);
+    const LensInfo li = analyzeLens(l, opts->wavelengthNm);
+    if (opts->json) {
+      Json j = lensInfoJson(li);
+      j["thickness_convention_override"] = opts->convention.empty() ? Json(nullptr) : Json(opts->convention);
+      std::printf("%s\n", j.dump(2).c_str());
+    } else {
+      std::printf("%s", lensInfoText(li).c_str());
+    }
+  });
+}
+
+}  // namespace inim::cli
