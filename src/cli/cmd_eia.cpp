@@ -16,6 +16,8 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "display/display.h"
+#include "mla/real_lens_rays.h"
+#include "mla/real_mla.h"
 #include "rays/pinhole_rays.h"
 #include "scene/analytic_scene.h"
 #include "synthesis/display_overrides.h"
@@ -54,10 +56,10 @@ std::string num(double v) {
 void addEiaCommand(CLI::App& app) {
   struct Opts {
     std::string display, scene, out, png, sdf, run, preview;
-    std::string triads, scale, rotate, translate, layout, exposure, gamut, whiteBalance;
-    double vcpMm = kDefaultVcpMm, viewingDistanceMm = 0.0;
+    std::string triads, scale, rotate, translate, layout, exposure, gamut, whiteBalance, realLensRay = "centroid";
+    double vcpMm = kDefaultVcpMm, viewingDistanceMm = 0.0, wavelengthNm = kLambdaDNm;
     int spp = 1;
-    bool aovs = false, quiet = false;
+    bool aovs = false, quiet = false, realLens = false;
     RunOptions runOpts;
   };
   auto o = std::make_shared<Opts>();
@@ -91,6 +93,14 @@ void addEiaCommand(CLI::App& app) {
   auto* gamutOpt = cmd->add_option("--gamut", o->gamut, "Out-of-gamut mapping: clip (per channel, default) or desaturate");
   auto* wbOpt = cmd->add_option("--white-balance", o->whiteBalance,
                                 "none (colorimetric, default) or d65 (gains so that D65 drives 1,1,1)");
+  cmd->add_flag("--real-lens", o->realLens,
+                "Query the scene along the real-lens display rays (traced through the refracting MLA at the physical "
+                "lens centres) instead of the pinhole rays");
+  auto* realRayOpt = cmd->add_option("--real-lens-ray", o->realLensRay,
+                                     "With --real-lens: centroid (power centroid of each pixel's exit bundle, default) "
+                                     "or chief (the ray through the lenslet's aperture centre)");
+  auto* wlOpt = cmd->add_option("--wavelength-nm", o->wavelengthNm, "With --real-lens: the wavelength, nm")
+                    ->capture_default_str();
   cmd->add_flag("--aovs", o->aovs, "Add A (opacity) and Z (display z of the first surface, mm) channels to the EXR");
   cmd->add_option("--preview", o->preview, "Placement preview PNG (central ray of each lenslet, like the paper's Fig. 4)");
   cmd->add_flag("--quiet", o->quiet, "Print nothing but warnings");
@@ -154,6 +164,25 @@ void addEiaCommand(CLI::App& app) {
     else if (run.viewingDistanceMm)
       lo.viewingDistanceMm = *run.viewingDistanceMm, lo.distanceKey = "viewing_distance_mm (" + run.file + ")";
     const EiLayout L = applyLayoutOverride(d, lo);
+    // Real-lens display rays (before the scene loads: a bad MLA or option fails early).
+    if (!o->realLens && (realRayOpt->count() || wlOpt->count()))
+      throw InputError("", realRayOpt->count() ? "--real-lens-ray" : "--wavelength-nm",
+                       realRayOpt->count() ? "\"" + o->realLensRay + "\"" : num(o->wavelengthNm),
+                       "--real-lens as well (the pinhole model has no refraction)");
+    RaySet realRays;
+    RealLensRayOptions ro;
+    RealLensRayStats realStats;
+    if (o->realLens) {
+      ro.model = parseRealLensRayModel(o->realLensRay, "--real-lens-ray");
+      if (!(o->wavelengthNm >= 360.0 && o->wavelengthNm <= 830.0))
+        throw InputError("", "--wavelength-nm", num(o->wavelengthNm), "a wavelength in 360-830 nm");
+      ro.wavelengthNm = o->wavelengthNm;
+      std::unique_ptr<RealMla> mla = RealMla::fromDisplay(d, L, L.gapMm);
+      ProgressBar bar("real-lens rays", uint64_t(L.numRays()), !o->quiet && ProgressBar::stderrIsTerminal());
+      realRays = generateRealLensRays(L, *mla, ro, &realStats, &bar);
+      bar.finish();
+      s.displayRays = &realRays;
+    }
     std::string triChoice = triOpt->count() ? o->triads : run.triadWavelengths.value_or("panel");
     const TriadWavelengths tw = parseTriadWavelengths(d.panel, triChoice);
 
@@ -168,6 +197,7 @@ void addEiaCommand(CLI::App& app) {
                   L.panelW, L.panelH);
       std::printf("scene:       %s\n", scenePath.c_str());
       std::printf("placement:   %s; VCP at z = %s mm\n", s.placement.describe().c_str(), num(s.vcpMm).c_str());
+      if (o->realLens) std::printf("rays:        %s\n", summaryText(ro, realStats).c_str());
       std::fflush(stdout);
     }
 
@@ -193,7 +223,7 @@ void addEiaCommand(CLI::App& app) {
     if (!previewTmp.empty()) writes.push_back(std::async(std::launch::async, [&] { writeImage(pv.image, previewTmp); }));
     uint64_t triads = 0;
     if (!sdfTmp.empty()) {
-      RaySet rays = generatePinholeRays(L);
+      RaySet rays = o->realLens ? realRays : generatePinholeRays(L);
       TriadOptions to;
       to.description = "inim triads: " + d.name + ", " + tw.source;
       ProgressBar bar("triads", uint64_t(L.numRays()) * 3, !o->quiet && ProgressBar::stderrIsTerminal());

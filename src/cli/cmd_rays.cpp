@@ -1,6 +1,7 @@
 // inim rays: the pinhole chief ray of every pixel of every EI, as the paper's Zemax ray text
-// (.txt, UTF-8 by default) or inim's binary rays (.irays). With --in, converts a ray file
-// (the paper's UTF-16LE macro output included) instead.
+// (.txt, UTF-8 by default) or inim's binary rays (.irays). With --real-lens, the rays that
+// actually leave the refracting lenslets (src/mla/real_lens_rays.h). With --in, converts a ray
+// file (the paper's UTF-16LE macro output included) instead.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,8 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "display/display.h"
+#include "mla/real_lens_rays.h"
+#include "mla/real_mla.h"
 #include "rays/pinhole_rays.h"
 #include "rays/ray_binary.h"
 #include "rays/zemax_ray_text.h"
@@ -35,13 +38,19 @@ RayFormat formatOf(const std::string& path, const std::string& key) {
   throw InputError("", key, "\"" + path + "\"", "a file ending in .txt (Zemax ray text) or .irays (inim binary rays)");
 }
 
+std::string num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
 }  // namespace
 
 void addRaysCommand(CLI::App& app) {
   struct Opts {
-    std::string display, out, in, layout, ei;
-    double gapMm = 0.0, viewingDistanceMm = 0.0;
-    bool macro = false;
+    std::string display, out, in, layout, ei, realLensRay = "centroid";
+    double gapMm = 0.0, viewingDistanceMm = 0.0, wavelengthNm = kLambdaDNm;
+    bool macro = false, realLens = false;
     RunOptions run;
   };
   auto o = std::make_shared<Opts>();
@@ -59,6 +68,14 @@ void addRaysCommand(CLI::App& app) {
   auto* eiOpt = cmd->add_option("--ei", o->ei,
                                 "Only EI K,L (K from the left, L from the top), positions relative to its pinhole (the "
                                 "macro's single-EI file); .txt only");
+  auto* realOpt = cmd->add_flag("--real-lens", o->realLens,
+                                "Trace every pixel's ray through the real MLA (refraction at n(lambda), the physical "
+                                "lens centres) instead of the pinhole model; origins moved back to z = 0");
+  auto* realRayOpt = cmd->add_option("--real-lens-ray", o->realLensRay,
+                                     "With --real-lens: centroid (the power centroid of the pixel's exit bundle through "
+                                     "its lenslet, default) or chief (the ray through the lenslet's aperture centre)");
+  auto* wlOpt = cmd->add_option("--wavelength-nm", o->wavelengthNm, "With --real-lens: the wavelength, nm")
+                    ->capture_default_str();
   auto* inOpt = cmd->add_option("--in", o->in,
                                 "Convert this ray file (.txt: Zemax text, UTF-8 or UTF-16LE; .irays) to --out instead "
                                 "of generating rays");
@@ -74,12 +91,13 @@ void addRaysCommand(CLI::App& app) {
     }
     OutputSet outputs;
     uint64_t count = 0;
-    std::string what;
+    std::string what, extra;
     if (inOpt->count()) {
-      if (gapOpt->count() || layoutOpt->count() || distOpt->count() || eiOpt->count() || !o->display.empty())
+      if (gapOpt->count() || layoutOpt->count() || distOpt->count() || eiOpt->count() || !o->display.empty() ||
+          realOpt->count())
         throw InputError("", "--in", "\"" + o->in + "\"",
-                         "no --display, --gap-mm, --layout, --viewing-distance-mm or --ei with --in (the file "
-                         "already holds the rays)");
+                         "no --display, --gap-mm, --layout, --viewing-distance-mm, --ei or --real-lens with --in (the "
+                         "file already holds the rays)");
       RayFormat inFormat = formatOf(o->in, "--in");
       RayBinaryInfo info;
       RaySet rays = inFormat == RayFormat::Text ? readZemaxRayText(o->in) : readRayBinary(o->in, &info);
@@ -95,6 +113,17 @@ void addRaysCommand(CLI::App& app) {
       count = rays.size();
       what = "converted from " + o->in;
     } else {
+      if (!o->realLens && (realRayOpt->count() || wlOpt->count()))
+        throw InputError("", realRayOpt->count() ? "--real-lens-ray" : "--wavelength-nm",
+                         realRayOpt->count() ? "\"" + o->realLensRay + "\"" : num(o->wavelengthNm),
+                         "--real-lens as well (the pinhole model has no refraction)");
+      RealLensRayOptions ro;
+      if (o->realLens) {
+        ro.model = parseRealLensRayModel(o->realLensRay, "--real-lens-ray");
+        if (!(o->wavelengthNm >= 360.0 && o->wavelengthNm <= 830.0))
+          throw InputError("", "--wavelength-nm", num(o->wavelengthNm), "a wavelength in 360-830 nm");
+        ro.wavelengthNm = o->wavelengthNm;
+      }
       Display d = loadDisplay(o->display.empty() ? defaultDisplayPath() : o->display);
       LayoutOverride lo;
       if (layoutOpt->count()) lo.layout = o->layout;
@@ -105,8 +134,50 @@ void addRaysCommand(CLI::App& app) {
           throw InputError("", "--gap-mm", std::to_string(o->gapMm), "a gap > 0 mm");
         L = L.withGap(o->gapMm);
       }
+      // Real-lens rays: traced before any output is opened (a bad MLA fails here).
+      RaySet realRays;
+      RealLensRayStats realStats;
+      if (o->realLens) {
+        std::unique_ptr<RealMla> mla = RealMla::fromDisplay(d, L, L.gapMm);
+        ProgressBar bar("real-lens rays", uint64_t(L.numRays()));
+        realRays = generateRealLensRays(L, *mla, ro, &realStats, &bar);
+        bar.finish();
+      }
       std::string tmp = outputs.add(o->out);
-      if (eiOpt->count()) {
+      if (eiOpt->count() && o->realLens) {
+        if (outFormat != RayFormat::Text)
+          throw InputError("", "--ei", "\"" + o->ei + "\"", "--out FILE.txt (single-EI files are Zemax text)");
+        int k = -1, l = -1;
+        if (std::sscanf(o->ei.c_str(), "%d,%d", &k, &l) != 2 || k < 0 || l < 0 || k >= L.eiCols || l >= L.eiRows)
+          throw InputError("", "--ei", "\"" + o->ei + "\"",
+                           "K,L with 0 <= K < " + std::to_string(L.eiCols) + " and 0 <= L < " + std::to_string(L.eiRows));
+        if (text.utf16) text.header = zemaxMacroHeader(L.raysPerEi());
+        // The EI's block of rays (ray order: EI column, then EI row from the bottom), positions
+        // relative to its physical lens centre.
+        const int64_t first = (int64_t(k) * L.eiRows + (L.eiRows - 1 - l)) * L.raysPerEi();
+        const double cx = L.lensX[size_t(k)], cy = L.lensY[size_t(l)];
+        writeZemaxRayText(
+            tmp, L.raysPerEi(),
+            [&](int64_t i, double* v) {
+              const Ray r = realRays.ray(size_t(first + i));
+              v[0] = double(r.o.x) - cx, v[1] = double(r.o.y) - cy, v[2] = r.o.z;
+              v[3] = r.d.x, v[4] = r.d.y, v[5] = r.d.z;
+            },
+            text);
+        count = uint64_t(L.raysPerEi());
+        what = "EI (" + std::to_string(k) + ", " + std::to_string(l) + ") of " + d.name + ", positions relative to its lens centre";
+      } else if (o->realLens) {
+        ProgressBar bar("write", realRays.size());
+        if (outFormat == RayFormat::Text) {
+          if (text.utf16) text.header = zemaxMacroHeader(int64_t(realRays.size()));
+          writeZemaxRayText(tmp, realRays, text, &bar);
+        } else {
+          writeRayBinary(tmp, realRays, RayBinaryInfo::fromLayout(L));
+        }
+        bar.finish();
+        count = realRays.size();
+        what = d.name;
+      } else if (eiOpt->count()) {
         if (outFormat != RayFormat::Text)
           throw InputError("", "--ei", "\"" + o->ei + "\"", "--out FILE.txt (single-EI files are Zemax text)");
         int k = -1, l = -1;
@@ -136,10 +207,22 @@ void addRaysCommand(CLI::App& app) {
       std::snprintf(buf, sizeof buf, " (%s layout, %d x %d EIs of %d x %d px, g = %.6g mm)", layoutName(L.kind),
                     L.eiCols, L.eiRows, L.eiW, L.eiH, L.gapMm);
       what += buf;
+      if (o->realLens) {
+        extra += summaryText(ro, realStats) + "\n";
+        if (L.kind == EiLayoutKind::Parallel) {
+          char note[200];
+          std::snprintf(note, sizeof note,
+                        "note: real-lens rays go through the physical lens centres (pitch %.6g mm), not the "
+                        "parallel layout's EI-centred pinholes\n",
+                        d.mla.pitchMm);
+          extra += note;
+        }
+      }
     }
     outputs.commit();
     double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("wrote %llu rays to %s: %s, in %.2f s\n", (unsigned long long)count, o->out.c_str(), what.c_str(), s);
+    std::printf("wrote %llu rays to %s: %s, in %.2f s\n%s", (unsigned long long)count, o->out.c_str(), what.c_str(), s,
+                extra.c_str());
   });
 }
 

@@ -72,7 +72,10 @@ const CmfTable& cmfTable() {
   return t;
 }
 
-void validate(const SynthesisSettings& s) {
+void validate(const SynthesisSettings& s, const EiLayout& L) {
+  if (s.displayRays && s.displayRays->size() != size_t(L.numRays()))
+    throw InputError("", "display rays", std::to_string(s.displayRays->size()) + " rays",
+                     "one ray per EI pixel of the layout (" + std::to_string(L.numRays()) + ")");
   if (s.spp < 1) throw InputError("", "--spp", std::to_string(s.spp), "a whole number >= 1");
   if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", num(s.vcpMm), "a finite distance in mm");
   if (!s.autoExposure && !(s.exposure > 0.0 && std::isfinite(s.exposure)))
@@ -86,7 +89,7 @@ void validate(const SynthesisSettings& s) {
 SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field& field,
                               const SynthesisSettings& s) {
   const auto t0 = Clock::now();
-  validate(s);
+  validate(s, L);
   const OrthoscopicQuery oq(s.placement.toDisplay(), s.vcpMm);
   const PanelColor color(panel);
   const bool spectral = field.encoding() == FieldEncoding::Spectral;
@@ -152,7 +155,9 @@ SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field
           qs.resize(nr);
           for (int64_t r = b0; r < b1; ++r) {
             const size_t i = size_t(r - b0);
-            const RayD pr = pinholeRay(L, r);
+            const RayD pr = s.displayRays ? RayD{Point3d(s.displayRays->ray(size_t(r)).o),
+                                                 glm::normalize(Vec3d(s.displayRays->ray(size_t(r)).d))}
+                                          : pinholeRay(L, r);
             for (int k = 0; k < spp; ++k) {
               OrthoscopicQuery::Query q = oq.make(pr.o, pr.d, uint64_t(r), uint32_t(k));
               rays[i * size_t(spp) + size_t(k)] = q.ray;

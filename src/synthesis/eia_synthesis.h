@@ -6,7 +6,8 @@
 //   SynthesisResult r = synthesizeEia(L, display.panel, field, s);
 //   writeImage(r.eia, "eia.exr");  writeImage(encodeForPanel(r.eia, display.panel.eotf), "eia.png");
 //
-// For every display ray (rays/pinhole_rays.h, one per EI pixel) the field is queried along the
+// For every display ray (rays/pinhole_rays.h, one per EI pixel, or SynthesisSettings::displayRays,
+// e.g. real-lens rays) the field is queried along the
 // reversed ray from the VCP (synthesis/orthoscopic.h), `spp` times with different wavelength
 // packets and light samples, and the mean radiance becomes panel drive values
 // (synthesis/panel_color.h). Work is split over EIs in parallel; ray ids are display ray
@@ -25,6 +26,7 @@
 #include "display/ei_layout.h"
 #include "display/panel.h"
 #include "field/field.h"
+#include "rays/ray_set.h"
 #include "synthesis/panel_color.h"
 #include "synthesis/placement.h"
 #include "triads/triads.h"
@@ -49,6 +51,10 @@ struct SynthesisSettings {
   bool aovs = false;            // A (opacity) and Z (display z, mm) channels
   bool progress = true;         // a bar on a terminal only
   int raysPerBatch = 4096;      // field queries per Field::query call
+  // Precomputed display rays (L.numRays() of them, in ray order, origins on or near z = 0,
+  // unit directions with d.z > 0), used instead of the pinhole rays: e.g. the real-lens rays
+  // of mla/real_lens_rays.h. Not owned; null: pinhole rays (rays/pinhole_rays.h).
+  const RaySet* displayRays = nullptr;
 };
 
 struct SynthesisStats {
@@ -78,7 +84,7 @@ struct SynthesisResult {
 };
 
 // Throws InputError for a singular placement or bad settings (spp < 1, non-finite VCP,
-// exposure <= 0).
+// exposure <= 0, displayRays of the wrong size).
 SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field& field,
                               const SynthesisSettings& s);
 

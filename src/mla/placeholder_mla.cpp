@@ -1,1 +1,0 @@
-// placeholder: stage mla is being written
