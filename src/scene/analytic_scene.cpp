@@ -79,6 +79,22 @@ inline bool toRay(const FieldRay& fr, Ray* ray) {
   return true;
 }
 
+// SceneGeometry::toEmbree, inlined.
+inline void fillEmbreeRay(const Ray& ray, uint32_t mask, RTCRay* r) {
+  r->org_x = ray.o.x;
+  r->org_y = ray.o.y;
+  r->org_z = ray.o.z;
+  r->dir_x = ray.d.x;
+  r->dir_y = ray.d.y;
+  r->dir_z = ray.d.z;
+  r->tnear = ray.tMin;
+  r->tfar = ray.tMax;
+  r->time = 0.0f;
+  r->mask = mask;
+  r->id = 0;
+  r->flags = 0;
+}
+
 }  // namespace
 
 FieldSample AnalyticScene::queryOne(const FieldRay& fr, const SampledWavelengths& lambda0,
@@ -123,14 +139,17 @@ void AnalyticScene::query(std::span<const FieldRay> rays, std::span<const Sample
   rtcInitIntersectContext(&shadowCtx);
   shadowCtx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   const uint32_t shadowMask = integrator_->shadowMask();
+  const bool filterShadows = integrator_->settings().filterShadows && geometry_->hasFilters();
 
   for (size_t base = 0; base < rays.size(); base += kChunk) {
     const size_t n = std::min(kChunk, rays.size() - base);
     for (size_t i = 0; i < n; ++i) {
-      valid[i] = toRay(rays[base + i], &ray[i]);
+      Ray r;
+      valid[i] = toRay(rays[base + i], &r);
       // A degenerate ray gets an empty interval: Embree reports no hit for it.
-      Ray r = valid[i] ? ray[i] : Ray{Point3(0.0f), Vec3(0, 0, 1), 1.0f, 0.0f};
-      SceneGeometry::toEmbree(r, kMaskAll, &rh[i].ray);
+      if (!valid[i]) r = Ray{Point3(0.0f), Vec3(0, 0, 1), 1.0f, 0.0f};
+      ray[i] = r;
+      fillEmbreeRay(r, kMaskAll, &rh[i].ray);
       rh[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
       rh[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     }
@@ -152,7 +171,7 @@ void AnalyticScene::query(std::span<const FieldRay> rays, std::span<const Sample
       bool hit = geometry_->hitFromEmbree(ray[i], rh[i], &h);
       L[i] = integrator_->LiFromHit(ray[i], hit, h, lam[i], rng, &t[i], &req[i]);
       if (req[i].active) {
-        SceneGeometry::toEmbree(req[i].ray, shadowMask, &shadow[ns]);
+        fillEmbreeRay(req[i].ray, shadowMask, &shadow[ns]);
         shadowOf[ns++] = uint32_t(i);
       }
     }
@@ -160,7 +179,11 @@ void AnalyticScene::query(std::span<const FieldRay> rays, std::span<const Sample
     for (unsigned k = 0; k < ns; ++k) {
       if (shadow[k].tfar < 0.0f) continue;  // blocked
       uint32_t i = shadowOf[k];
-      L[i] += req[i].contribution * integrator_->filterTransmittance(req[i], lam[i]);
+      // filterTransmittance is exactly 1 unless the ray may meet a filter: skip the call.
+      if (filterShadows && geometry_->mayHitFilter(req[i].ray))
+        L[i] += req[i].contribution * integrator_->filterTransmittance(req[i], lam[i]);
+      else
+        L[i] += req[i].contribution;
     }
     for (size_t i = 0; i < n; ++i) out[base + i] = finish(L[i], t[i], lam[i], lambda[base + i]);
   }

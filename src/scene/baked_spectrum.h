@@ -18,7 +18,7 @@ class BakedSpectrum {
   explicit BakedSpectrum(const Spectrum& s, float scale = 1.0f);
 
   bool isConstant() const { return table_.empty(); }
-  float operator()(float lambdaNm) const {
+  INIM_SS_INLINE float operator()(float lambdaNm) const {
     if (table_.empty()) return c_;
     float x = lambdaNm - kLambdaMin;
     if (!(x > 0.0f)) return table_.front();
@@ -29,7 +29,7 @@ class BakedSpectrum {
   }
   // The 4 lanes are computed in registers and stored once (element-wise writes read back
   // as one vector stall on store forwarding in the hot path).
-  SampledSpectrum sample(const SampledWavelengths& lambda) const {
+  INIM_SS_INLINE SampledSpectrum sample(const SampledWavelengths& lambda) const {
     static_assert(kNumWavelengths == 4, "SSE lanes");
     if (table_.empty()) return SampledSpectrum(c_);
     SampledSpectrum s;

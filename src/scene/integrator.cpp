@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/sampling.h"
+#include "scene/light_sample_inl.h"
 
 namespace inim {
 
@@ -72,8 +73,11 @@ SampledSpectrum Integrator::shadowTransmittance(const ShadowRequest& req,
   return filterTransmittance(req, lambda);
 }
 
-SampledSpectrum Integrator::evalBsdf(const Vertex& v, const Vec3& wi,
-                                     const SampledWavelengths& lambda, float* pdf) const {
+// evalBsdf, sampleOneLight and directLight are inlined into LiFromHit so that the light
+// sample, the BSDF value and the shadow request stay in registers (copies of Vec3-packed
+// structs through the stack stall on store forwarding).
+INIM_ALWAYS_INLINE inline SampledSpectrum Integrator::evalBsdf(
+    const Vertex& v, const Vec3& wi, const SampledWavelengths& lambda, float* pdf) const {
   *pdf = 0.0f;
   if (glm::dot(wi, v.ng) <= 0.0f) return SampledSpectrum(0.0f);  // reflection only
   float cosI = glm::dot(wi, v.ns);
@@ -89,40 +93,40 @@ SampledSpectrum Integrator::evalBsdf(const Vertex& v, const Vec3& wi,
   return roughConductorF(*v.m, woL, wiL, lambda) * wiL.z;
 }
 
-SampledSpectrum Integrator::sampleOneLight(int light, float pmf, const Vertex& v,
-                                           const SampledWavelengths& lambda, Rng& rng, bool mis,
-                                           const SampledSpectrum& beta,
-                                           ShadowRequest* deferred) const {
+INIM_ALWAYS_INLINE inline SampledSpectrum Integrator::sampleOneLight(
+    int light, float pmf, const Vertex& v, const SampledWavelengths& lambda, Rng& rng, bool mis,
+    const SampledSpectrum& beta, ShadowRequest* deferred) const {
   LightSampleContext ctx{v.h->p, v.ns};
   Vec2 u(rng.uniform(), rng.uniform());
   float u3 = rng.uniform();
   LightSample ls;
-  if (!lights_.sample(light, ctx, u, u3, lambda, &ls)) return SampledSpectrum(0.0f);
+  if (!lights_.sampleInline(light, ctx, u, u3, lambda, &ls)) return SampledSpectrum(0.0f);
   float bsdfPdf;
   SampledSpectrum f = evalBsdf(v, ls.wi, lambda, &bsdfPdf);
   if (f.isBlack() || ls.L.isBlack()) return SampledSpectrum(0.0f);
-  ShadowRequest req;
+  // Filled in place when deferred (no copy of the request).
+  ShadowRequest local;
+  ShadowRequest& req = deferred ? *deferred : local;
   Point3 o = spawnOrigin(*v.h, ls.wi);
   req.infinite = ls.infinite;
   req.dir = ls.wi;
   if (ls.infinite) {
     req.ray = Ray{o, ls.wi, 0.0f, kInfinity};
   } else {
-    req.target = ls.pLight;
+    Point3 target = ls.pLight;
     if (!ls.delta) {
       // Pull the target off the light's surface, toward the shading point.
-      const Shape& s = geom_.shape(lights_.lights()[light].shape);
-      float e = offsetEpsilon(ls.pLight, s.extent);
-      req.target += (glm::dot(ls.nLight, o - ls.pLight) >= 0.0f ? e : -e) * ls.nLight;
+      float e = offsetEpsilon(ls.pLight, lights_.lights()[light].shapePtr->extent);
+      target += (glm::dot(ls.nLight, o - ls.pLight) >= 0.0f ? e : -e) * ls.nLight;
     }
-    req.ray = Ray{o, req.target - o, 0.0f, 1.0f};
+    req.target = target;
+    req.ray = Ray{o, target - o, 0.0f, 1.0f};
   }
   float w = 1.0f;
   if (mis && !ls.delta) w = powerHeuristic(pmf * ls.pdf, bsdfPdf);
   req.contribution = beta * f * ls.L * (w / (pmf * ls.pdf));
   if (deferred) {
     req.active = true;
-    *deferred = req;
     return SampledSpectrum(0.0f);
   }
   SampledSpectrum Tr = shadowTransmittance(req, lambda);
@@ -130,19 +134,24 @@ SampledSpectrum Integrator::sampleOneLight(int light, float pmf, const Vertex& v
   return req.contribution * Tr;
 }
 
-SampledSpectrum Integrator::directLight(const Vertex& v, const SampledWavelengths& lambda, Rng& rng,
-                                        bool mis, const SampledSpectrum& beta,
-                                        ShadowRequest* deferred) const {
-  if (lights_.selection() == LightSelection::All) {
-    SampledSpectrum sum(0.0f);
-    for (int i = 0; i < int(lights_.lights().size()); ++i) {
-      float pmf = lights_.pmf(i);
-      if (pmf > 0.0f) sum += sampleOneLight(i, pmf, v, lambda, rng, mis, beta, nullptr);
-    }
-    return sum;
+// LightSelection::All: every light, each with its own shadow ray traced here (out of line:
+// not the hot path).
+SampledSpectrum Integrator::directLightAll(const Vertex& v, const SampledWavelengths& lambda,
+                                           Rng& rng, bool mis, const SampledSpectrum& beta) const {
+  SampledSpectrum sum(0.0f);
+  for (int i = 0; i < int(lights_.lights().size()); ++i) {
+    float pmf = lights_.pmf(i);
+    if (pmf > 0.0f) sum += sampleOneLight(i, pmf, v, lambda, rng, mis, beta, nullptr);
   }
+  return sum;
+}
+
+INIM_ALWAYS_INLINE inline SampledSpectrum Integrator::directLight(
+    const Vertex& v, const SampledWavelengths& lambda, Rng& rng, bool mis,
+    const SampledSpectrum& beta, ShadowRequest* deferred) const {
+  if (lights_.selection() == LightSelection::All) return directLightAll(v, lambda, rng, mis, beta);
   float pmf;
-  int light = lights_.select(rng.uniform(), &pmf);
+  int light = lights_.selectInline(rng.uniform(), &pmf);
   if (light < 0) return SampledSpectrum(0.0f);
   return sampleOneLight(light, pmf, v, lambda, rng, mis, beta, deferred);
 }
@@ -157,9 +166,22 @@ SampledSpectrum Integrator::Li(const Ray& ray, SampledWavelengths& lambda, Rng& 
 SampledSpectrum Integrator::LiFromHit(const Ray& ray0, bool didHit, const Hit& firstHit,
                                       SampledWavelengths& lambda, Rng& rng, float* hitT,
                                       ShadowRequest* deferred) const {
-  const bool path = settings_.type == IntegratorSettings::Type::Path;
+  if (settings_.type == IntegratorSettings::Type::Path)
+    return liImpl<true>(ray0, didHit, firstHit, lambda, rng, hitT, deferred);
+  return liImpl<false>(ray0, didHit, firstHit, lambda, rng, hitT, deferred);
+}
+
+// One instance per integrator type, so that the direct one carries no path-tracing code
+// (smaller, and its helpers are inlined once).
+template <bool kPath>
+SampledSpectrum Integrator::liImpl(const Ray& ray0, bool didHit, const Hit& firstHit,
+                                   SampledWavelengths& lambda, Rng& rng, float* hitT,
+                                   ShadowRequest* deferred) const {
+  constexpr bool path = kPath;
   SampledSpectrum L(0.0f), beta(1.0f);
-  Ray ray = ray0;
+  // The current ray: the caller's at depth 0 (not copied), then `next`.
+  const Ray* rayp = &ray0;
+  Ray next;
   bool specular = true;  // emitters seen by the query ray or through specular chains count fully
   float prevPdf = 0.0f;
   LightSampleContext prevCtx;
@@ -172,7 +194,7 @@ SampledSpectrum Integrator::LiFromHit(const Ray& ray0, bool didHit, const Hit& f
     if (depth == 0) {
       hit = didHit;
     } else {
-      hit = geom_.intersect(ray, &scratch);
+      hit = geom_.intersect(*rayp, &scratch);
     }
     const Hit& h = depth == 0 ? firstHit : scratch;
     if (!hit) {
@@ -182,7 +204,7 @@ SampledSpectrum Integrator::LiFromHit(const Ray& ray0, bool didHit, const Hit& f
         if (specular) {
           L += beta * Le;
         } else if (path) {
-          float pl = lights_.pmf(env) * lights_.pdfEnvironment(prevCtx, ray.d);
+          float pl = lights_.pmf(env) * lights_.pdfEnvironment(prevCtx, rayp->d);
           L += beta * Le * powerHeuristic(prevPdf, pl);
         }
       }
@@ -195,7 +217,7 @@ SampledSpectrum Integrator::LiFromHit(const Ray& ray0, bool didHit, const Hit& f
     }
     const Shape& s = geom_.shape(h.shape);
     const Material& m = materials_[s.material];
-    Vec3 wo = -ray.d;
+    Vec3 wo = -rayp->d;
     bool front = glm::dot(h.ng, wo) >= 0.0f;
 
     if (m.emissive && (m.twoSided || front)) {
@@ -213,7 +235,10 @@ SampledSpectrum Integrator::LiFromHit(const Ray& ray0, bool didHit, const Hit& f
     Vec3 wi;
 
     if (!m.isSpecular()) {
-      if (m.type == MaterialType::Diffuse) v.albedo = m.reflectance.evaluate(h.tex, lambda);
+      if (m.type == MaterialType::Diffuse)
+        v.albedo = m.reflectance.type() == TextureType::Constant
+                       ? m.reflectance.constantSpectrum().sample(lambda)
+                       : m.reflectance.evaluate(h.tex, lambda);
       if (!path) {  // direct lighting ends at the first non-specular surface
         L += directLight(v, lambda, rng, false, beta, deferred);
         break;
@@ -314,7 +339,8 @@ SampledSpectrum Integrator::LiFromHit(const Ray& ray0, bool didHit, const Hit& f
       if (rng.uniform() < q) break;
       beta = beta / (1.0f - q);
     }
-    ray = Ray{spawnOrigin(h, wi), wi, 0.0f, kInfinity};
+    next = Ray{spawnOrigin(h, wi), wi, 0.0f, kInfinity};
+    rayp = &next;
   }
   return L;
 }

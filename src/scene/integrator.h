@@ -75,6 +75,13 @@ class Integrator {
   SampledSpectrum directLight(const Vertex& v, const SampledWavelengths& lambda, Rng& rng,
                               bool mis, const SampledSpectrum& beta,
                               ShadowRequest* deferred) const;
+  SampledSpectrum directLightAll(const Vertex& v, const SampledWavelengths& lambda, Rng& rng,
+                                 bool mis, const SampledSpectrum& beta) const;
+  // LiFromHit for one integrator type (integrator.cpp).
+  template <bool kPath>
+  SampledSpectrum liImpl(const Ray& ray0, bool didHit, const Hit& firstHit,
+                         SampledWavelengths& lambda, Rng& rng, float* hitT,
+                         ShadowRequest* deferred) const;
   SampledSpectrum sampleOneLight(int light, float pmf, const Vertex& v,
                                  const SampledWavelengths& lambda, Rng& rng, bool mis,
                                  const SampledSpectrum& beta, ShadowRequest* deferred) const;

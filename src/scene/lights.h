@@ -3,6 +3,7 @@
 // including the rectangular "rect" lights of the scene file) and a uniform environment.
 // Lights are plain structs dispatched by a switch (no virtual calls on the hot path); one
 // light is chosen per shading point from a power-proportional (or uniform) distribution.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,10 @@
 #include "scene/baked_spectrum.h"
 #include "scene/materials.h"
 #include "scene/scene_geometry.h"
+
+#ifndef INIM_ALWAYS_INLINE
+#define INIM_ALWAYS_INLINE __attribute__((always_inline))
+#endif
 
 namespace inim {
 
@@ -26,6 +31,7 @@ struct Light {
   const Shape* shapePtr = nullptr;  // area: &geometry.shape(shape), set by build()
   bool twoSided = false;    // area
   float power = 0.0f;       // for light selection
+  float pdfAreaConst = 0.0f;  // area: float(1 / shape area), set by build()
 };
 
 // Where light is sampled from: a point and the unit normal of the hemisphere that matters
@@ -60,10 +66,28 @@ class LightSet {
   LightSelection selection() const { return selection_; }
   // Picks a light; -1 if none can be picked.
   int select(float u, float* pmf) const;
+  // select(), inlined: a linear scan (same index as the binary search) for few lights.
+  INIM_ALWAYS_INLINE int selectInline(float u, float* pmf) const {
+    const int n = int(cdf_.size());
+    if (n == 0 || cdf_[n - 1] <= 0.0f) return -1;
+    int i = 0;
+    if (n <= 16) {
+      while (i < n && !(u < cdf_[i])) ++i;  // first i with cdf[i] > u (upper_bound)
+    } else {
+      i = int(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
+    }
+    i = std::min(i, n - 1);
+    while (i > 0 && pmf_[i] == 0.0f) --i;  // u landed on a zero-width step
+    *pmf = pmf_[i];
+    return pmf_[i] > 0.0f ? i : -1;
+  }
   float pmf(int light) const;
 
   bool sample(int light, const LightSampleContext& ctx, Vec2 u, float u3,
               const SampledWavelengths& lambda, LightSample* ls) const;
+  // sample(), inlined into the hot path (defined in scene/light_sample_inl.h).
+  bool sampleInline(int light, const LightSampleContext& ctx, Vec2 u, float u3,
+                    const SampledWavelengths& lambda, LightSample* ls) const;
   // Solid-angle pdf that sample() would give for the direction from ctx to the point hit
   // h on area light `light` (without the selection pmf).
   float pdfArea(int light, const LightSampleContext& ctx, const Hit& h) const;

@@ -146,6 +146,12 @@ SceneGeometry::SceneGeometry(std::vector<Shape> shapes) : shapes_(std::move(shap
     lo_ = glm::min(lo_, s.lo);
     hi_ = glm::max(hi_, s.hi);
   }
+  if (filterScene_) {
+    // Bounds of the filters, padded for rounding.
+    Vec3 pad = 1e-5f * (glm::abs(filterLo_) + glm::abs(filterHi_)) + 1e-30f;
+    filterLoPad_ = filterLo_ - pad;
+    filterHiPad_ = filterHi_ + pad;
+  }
   rtcCommitScene(scene_);
   if (filterScene_) rtcCommitScene(filterScene_);
   checkDevice(device_, "scene build");
@@ -210,9 +216,7 @@ bool SceneGeometry::intersect(const Ray& ray, Hit* hit, uint32_t mask) const {
 
 bool SceneGeometry::mayHitFilter(const Ray& ray) const {
   if (!filterScene_) return false;
-  // Bounds of the filters, padded for rounding.
-  Vec3 pad = 1e-5f * (glm::abs(filterLo_) + glm::abs(filterHi_)) + 1e-30f;
-  Vec3 lo = filterLo_ - pad, hi = filterHi_ + pad;
+  const Vec3 &lo = filterLoPad_, &hi = filterHiPad_;
   if (std::isfinite(ray.tMax)) {
     // Segment vs box by separating axes (no divisions): the box axes, then the 3 axes
     // perpendicular to the segment and each box axis.

@@ -50,6 +50,7 @@ class SceneGeometry {
   RTCScene scene_ = nullptr;
   RTCScene filterScene_ = nullptr;  // only the thin filters (or null)
   Point3 filterLo_{kInfinity}, filterHi_{-kInfinity};
+  Point3 filterLoPad_{kInfinity}, filterHiPad_{-kInfinity};  // padded for rounding (mayHitFilter)
   Point3 lo_{0.0f}, hi_{0.0f};
   float extent_ = 1.0f;
 };

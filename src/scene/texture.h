@@ -45,6 +45,8 @@ class ReflectanceTexture {
   static ReflectanceTexture image(const Image& linearRGB, bool repeat);
 
   TextureType type() const { return type_; }
+  // The spectrum of a Constant texture (the background of patterns).
+  const BakedSpectrum& constantSpectrum() const { return a_; }
   SampledSpectrum evaluate(const SurfaceCoords& c, const SampledWavelengths& lambda) const;
   // Fraction of ink at st, in [0,1] (0 for constants and images).
   float inkFraction(Vec2 st) const;

@@ -9,30 +9,35 @@
 namespace inim {
 
 constexpr int kNumWavelengths = 4;
+
+// SampledSpectrum is passed in two SSE registers (two 8-byte halves): an out-of-line
+// operator reassembles the halves through the stack and stalls on store forwarding, so
+// its small members are always inlined, even into large hot functions.
+#define INIM_SS_INLINE __attribute__((always_inline)) inline
 constexpr float kLambdaMin = 360.0f;  // nm
 constexpr float kLambdaMax = 830.0f;
 
 class SampledSpectrum {
  public:
-  SampledSpectrum() { v_.fill(0.0f); }
-  explicit SampledSpectrum(float c) { v_.fill(c); }
-  float& operator[](int i) { return v_[i]; }
-  float operator[](int i) const { return v_[i]; }
+  INIM_SS_INLINE SampledSpectrum() { v_.fill(0.0f); }
+  INIM_SS_INLINE explicit SampledSpectrum(float c) { v_.fill(c); }
+  INIM_SS_INLINE float& operator[](int i) { return v_[i]; }
+  INIM_SS_INLINE float operator[](int i) const { return v_[i]; }
 
 #define INIM_SS_OP(op)                                                          \
-  SampledSpectrum& operator op##=(const SampledSpectrum& s) {                   \
+  INIM_SS_INLINE SampledSpectrum& operator op##=(const SampledSpectrum& s) {    \
     for (int i = 0; i < kNumWavelengths; ++i) v_[i] op## = s.v_[i];             \
     return *this;                                                               \
   }                                                                             \
-  SampledSpectrum operator op(const SampledSpectrum& s) const {                 \
+  INIM_SS_INLINE SampledSpectrum operator op(const SampledSpectrum& s) const {  \
     SampledSpectrum r = *this;                                                  \
     return r op## = s;                                                          \
   }                                                                             \
-  SampledSpectrum& operator op##=(float a) {                                    \
+  INIM_SS_INLINE SampledSpectrum& operator op##=(float a) {                     \
     for (int i = 0; i < kNumWavelengths; ++i) v_[i] op## = a;                   \
     return *this;                                                               \
   }                                                                             \
-  SampledSpectrum operator op(float a) const {                                  \
+  INIM_SS_INLINE SampledSpectrum operator op(float a) const {                   \
     SampledSpectrum r = *this;                                                  \
     return r op## = a;                                                          \
   }
@@ -46,8 +51,8 @@ class SampledSpectrum {
     for (int i = 0; i < kNumWavelengths; ++i) r.v_[i] = d.v_[i] != 0.0f ? v_[i] / d.v_[i] : 0.0f;
     return r;
   }
-  SampledSpectrum operator/(float a) const { return *this * (1.0f / a); }
-  bool isBlack() const {
+  INIM_SS_INLINE SampledSpectrum operator/(float a) const { return *this * (1.0f / a); }
+  INIM_SS_INLINE bool isBlack() const {
     return std::all_of(v_.begin(), v_.end(), [](float x) { return x == 0.0f; });
   }
   float maxValue() const { return *std::max_element(v_.begin(), v_.end()); }
@@ -59,7 +64,7 @@ class SampledSpectrum {
  private:
   std::array<float, kNumWavelengths> v_;
 };
-inline SampledSpectrum operator*(float a, const SampledSpectrum& s) { return s * a; }
+INIM_SS_INLINE SampledSpectrum operator*(float a, const SampledSpectrum& s) { return s * a; }
 
 class SampledWavelengths {
  public:
@@ -70,8 +75,8 @@ class SampledWavelengths {
   static float visiblePdf(float lambda);
   static float sampleVisibleWavelength(float u);
 
-  float operator[](int i) const { return lambda_[i]; }
-  const SampledSpectrum& pdf() const { return pdf_; }
+  INIM_SS_INLINE float operator[](int i) const { return lambda_[i]; }
+  INIM_SS_INLINE const SampledSpectrum& pdf() const { return pdf_; }
   // Keep only the hero wavelength (index 0) after a dispersive event.
   void terminateSecondary();
   bool secondaryTerminated() const;
