@@ -16,6 +16,9 @@ void addEiaCommand(CLI::App& app);      // inim eia
 void addTriadsCommand(CLI::App& app);   // inim triads export|form
 void addCompareCommand(CLI::App& app);  // inim compare A B
 void addLensCommand(CLI::App& app);     // inim lens info FILE
+void addViewCommand(CLI::App& app);     // inim view
+void addReferenceCommand(CLI::App& app);  // inim reference
+void addFig11Command(CLI::App& app);    // inim fig11
 
 // Options every command that computes shares.
 struct RunOptions {

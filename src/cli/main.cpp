@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
   inim::cli::addRaysCommand(app);
   inim::cli::addEiaCommand(app);
   inim::cli::addTriadsCommand(app);
+  inim::cli::addViewCommand(app);
+  inim::cli::addReferenceCommand(app);
+  inim::cli::addFig11Command(app);
   inim::cli::addCompareCommand(app);
   inim::cli::addLensCommand(app);
   inim::cli::addBenchCommand(app);

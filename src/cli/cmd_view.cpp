@@ -1,0 +1,331 @@
+// inim view: what a camera sees when the display shows an EIA (spectral Monte Carlo through the
+// camera lens, the MLA and the panel's subpixels; src/view/view_renderer.h).
+// inim reference: the same camera and pose looking at the scene itself, at the placement the
+// EIA was made with (src/view/reference_renderer.h).
+// Both write linear camera RGB (x exposure) as EXR and an sRGB PNG beside it.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <future>
+#include <memory>
+#include <string>
+
+#include "camera/camera_config.h"
+#include "cli/commands.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/output_file.h"
+#include "core/parallel.h"
+#include "display/display.h"
+#include "scene/analytic_scene.h"
+#include "synthesis/display_overrides.h"
+#include "synthesis/placement.h"
+#include "view/display_model.h"
+#include "view/display_pose.h"
+#include "view/panel_emitter.h"
+#include "view/reference_renderer.h"
+#include "view/view_camera.h"
+#include "view/view_image.h"
+#include "view/view_renderer.h"
+
+namespace fs = std::filesystem;
+
+namespace inim::cli {
+
+namespace {
+
+std::string num(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+std::string lowerExt(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+// Options shared by `view` and `reference`: camera, pose, image size, samples, outputs.
+struct CameraPoseOpts {
+  std::string camera, cameraModel, exposure = "auto", out, png;
+  double distanceMm = 0.0, rotH = 0.0, rotV = 0.0, focusMm = 0.0;
+  int width = 0, height = 0, spp = 16;
+  bool quiet = false;
+  RunOptions run;
+  CLI::Option* distanceOpt = nullptr;
+};
+
+void addCameraPoseOptions(CLI::App* cmd, CameraPoseOpts& o) {
+  cmd->add_option("--camera", o.camera,
+                  "Camera: a name in optics/cameras/ or a JSON file (default: alvium-1800-u-500c)");
+  cmd->add_option("--camera-model", o.cameraModel, "real-lens, thin-lens or pinhole (default: the camera file's)")
+      ->check(CLI::IsMember({"real-lens", "thin-lens", "pinhole"}));
+  o.distanceOpt = cmd->add_option("--distance-mm", o.distanceMm,
+                                  "Camera (entrance pupil) to display centre, mm (default: the camera file's distance_mm)");
+  cmd->add_option("--rot-h-deg", o.rotH,
+                  "Display rotation about its vertical axis, degrees; + turns its right edge away from the camera")
+      ->capture_default_str();
+  cmd->add_option("--rot-v-deg", o.rotV,
+                  "Display rotation about its horizontal axis, degrees; + turns its top edge away from the camera")
+      ->capture_default_str();
+  cmd->add_option("--focus-mm", o.focusMm, "Focus distance from the entrance pupil, mm (default: the camera distance, "
+                                           "i.e. the MLA plane)");
+  cmd->add_option("--width", o.width, "Image width in pixels (default: the sensor's; a smaller width keeps the field of "
+                                      "view and scales the pixel pitch)");
+  cmd->add_option("--height", o.height, "Image height in pixels (default: the sensor's aspect ratio)");
+  cmd->add_option("--spp", o.spp, "Samples per pixel")->capture_default_str();
+  cmd->add_option("--exposure", o.exposure,
+                  "Exposure factor applied to the EXR and the PNG, or auto (99th percentile of the brightest channel "
+                  "-> 0.9)")
+      ->capture_default_str();
+  cmd->add_option("--out", o.out, "Output EXR: linear, white-balanced camera RGB x exposure")->required();
+  cmd->add_option("--png", o.png, "sRGB PNG (default: beside --out, same name, .png)");
+  cmd->add_flag("--quiet", o.quiet, "Print nothing but warnings");
+  addRunOptions(cmd, o.run);
+}
+
+struct CameraSetup {
+  CameraDescription desc;
+  DisplayPose pose;
+  std::unique_ptr<CameraModel> camera;
+  Exposure exposure;
+  std::string png;
+};
+
+CameraSetup setupCamera(const CameraPoseOpts& o) {
+  if (o.spp < 1) throw InputError("", "--spp", std::to_string(o.spp), "a whole number >= 1");
+  if (lowerExt(o.out) != ".exr") throw InputError("", "--out", "\"" + o.out + "\"", "an OpenEXR file name (.exr)");
+  CameraSetup s;
+  s.png = o.png.empty() ? fs::path(o.out).replace_extension(".png").string() : o.png;
+  if (lowerExt(s.png) != ".png") throw InputError("", "--png", "\"" + s.png + "\"", "a PNG file name (.png)");
+  s.exposure = parseExposure(o.exposure);
+  if (o.width < 0) throw InputError("", "--width", std::to_string(o.width), "a whole number of pixels >= 1");
+  if (o.height < 0) throw InputError("", "--height", std::to_string(o.height), "a whole number of pixels >= 1");
+  s.desc = loadCameraDescription(o.camera.empty() ? defaultCameraPath() : o.camera);
+  s.pose.rotHDeg = o.rotH;
+  s.pose.rotVDeg = o.rotV;
+  s.pose.distanceMm = o.distanceOpt->count() ? o.distanceMm : s.desc.distanceMm;
+  if (!(s.pose.distanceMm > 0.0) || !std::isfinite(s.pose.distanceMm))
+    throw InputError("", "--distance-mm", num(s.pose.distanceMm), "a camera distance > 0 mm");
+  ViewCameraOptions co;
+  if (!o.cameraModel.empty())
+    co.kind = o.cameraModel == "pinhole" ? CameraModelKind::Pinhole
+              : o.cameraModel == "thin-lens" ? CameraModelKind::ThinLens
+                                             : CameraModelKind::RealLens;
+  co.width = o.width;
+  co.height = o.height;
+  co.focusMm = o.focusMm;
+  if (o.focusMm < 0.0 || !std::isfinite(o.focusMm))
+    throw InputError("", "--focus-mm", num(o.focusMm), "a focus distance > 0 mm");
+  s.camera = makeViewCamera(s.desc, s.pose, co);
+  return s;
+}
+
+// Writes the exposed EXR and the sRGB PNG together (temporaries renamed only when both succeed).
+double writeOutputs(const Image& cameraRgb, const CameraSetup& cs, const std::string& out) {
+  const double k = exposureFactor(cameraRgb, cs.desc.sensor, cs.exposure);
+  const Image exposed = scaledImage(cameraRgb, k);
+  OutputSet outputs;
+  const std::string exrTmp = outputs.add(out), pngTmp = outputs.add(cs.png);
+  auto exr = std::async(std::launch::async, [&] { writeImage(exposed, exrTmp); });
+  writeImage(cameraRgbToSrgb(exposed, cs.desc.sensor), pngTmp);
+  exr.get();
+  outputs.commit();
+  return k;
+}
+
+void printCamera(const CameraSetup& cs) {
+  std::printf("camera:      %s; %s\n", cs.desc.name.c_str(), cs.camera->describe().c_str());
+  std::printf("image:       %d x %d px, pitch %s um; pose %s\n", cs.camera->width(), cs.camera->height(),
+              num(cs.camera->sensor().pitchMm * 1e3).c_str(), cs.pose.describe().c_str());
+}
+
+}  // namespace
+
+void addViewCommand(CLI::App& app) {
+  struct Opts {
+    CameraPoseOpts cam;
+    std::string display, eia, mla = "real", spectral = "primaries", layout;
+    double gapMm = 0.0, background = 0.0, cosN = 0.0, viewingDistanceMm = 0.0;
+    bool noCoverGlass = false, relative = false, noCull = false;
+  };
+  auto o = std::make_shared<Opts>();
+  auto* cmd = app.add_subcommand(
+      "view", "Simulate what a camera sees when the display shows an EIA: spectral Monte Carlo through the camera "
+              "lens, the MLA and the panel's subpixels");
+  cmd->add_option("--display", o->display, "Display JSON (default: optics/displays/paper-prototype.json)");
+  cmd->add_option("--eia", o->eia, "EIA: linear drive values (EXR from inim eia), panel-sized or EIA-sized; a PNG is "
+                                   "decoded through the panel's EOTF")
+      ->required();
+  cmd->add_option("--mla", o->mla, "MLA model: real (refracting lenslets) or ideal (paraxial thin lenses, the "
+                                   "pinhole-MLA comparison)")
+      ->check(CLI::IsMember({"real", "ideal"}))
+      ->capture_default_str();
+  auto* gapOpt = cmd->add_option("--gap-mm", o->gapMm, "Panel to MLA reference plane, mm (default: the display's "
+                                                       "reconstruction gap)");
+  auto* layoutOpt = cmd->add_option("--layout", o->layout, "EI layout the EIA was made for: parallel, toed-in or "
+                                                           "lens-grid (default: the display's)");
+  auto* distOpt = cmd->add_option("--viewing-distance-mm", o->viewingDistanceMm, "Viewing distance D of a toed-in layout");
+  cmd->add_option("--spectral", o->spectral, "Wavelength sampling: primaries (importance-sampled per panel primary) "
+                                             "or visible (4-wavelength packets)")
+      ->check(CLI::IsMember({"primaries", "visible"}))
+      ->capture_default_str();
+  cmd->add_option("--background", o->background, "Luminance of the (D65 grey) background around the display, in the "
+                                                  "image's units (default 0: black)");
+  cmd->add_option("--emission-cos-n", o->cosN, "Extra cos^n angular emission profile on top of the panel's (0: none)");
+  cmd->add_flag("--no-cover-glass", o->noCoverGlass, "Ignore the panel's cover glass");
+  cmd->add_flag("--no-cull", o->noCull, "Trace every tile, also those that cannot see the display");
+  cmd->add_flag("--relative", o->relative, "Panel white = luminance 1 instead of its peak luminance in cd/m^2");
+  addCameraPoseOptions(cmd, o->cam);
+
+  cmd->callback([o, gapOpt, layoutOpt, distOpt] {
+    const auto t0 = std::chrono::steady_clock::now();
+    ThreadLimit threads(o->cam.run.threads);
+    CameraSetup cs = setupCamera(o->cam);
+    if (!(o->background >= 0.0) || !std::isfinite(o->background))
+      throw InputError("", "--background", num(o->background), "a luminance >= 0");
+    if (!(o->cosN >= 0.0) || !std::isfinite(o->cosN))
+      throw InputError("", "--emission-cos-n", num(o->cosN), "an exponent >= 0");
+
+    Display d = loadDisplay(o->display.empty() ? defaultDisplayPath() : o->display);
+    LayoutOverride lo;
+    if (layoutOpt->count()) lo.layout = o->layout;
+    if (distOpt->count()) lo.viewingDistanceMm = o->viewingDistanceMm;
+    const EiLayout L = applyLayoutOverride(d, lo);
+    const double g = gapOpt->count() ? o->gapMm : d.reconstructionGapMm;
+    if (!(g > 0.0) || !std::isfinite(g)) throw InputError("", "--gap-mm", num(g), "a gap > 0 mm");
+
+    const std::string ext = lowerExt(o->eia);
+    if (ext != ".exr" && ext != ".png")
+      throw InputError("", "--eia", "\"" + o->eia + "\"", "an EIA image: linear EXR (or encoded PNG)");
+    if (!fs::exists(o->eia)) throw InputError(o->eia, "--eia", "\"" + o->eia + "\"", "an existing EIA image");
+    Image eia;
+    try {
+      eia = readImage(o->eia, true);
+    } catch (const InputError& e) {
+      throw e.file().empty() ? e.withFile(o->eia) : e;
+    }
+    EmitterSettings es;
+    es.absolute = !o->relative;
+    es.cosExponent = o->cosN;
+    es.coverGlass = !o->noCoverGlass;
+    es.encoded = ext == ".png";
+    DisplayModel dm = makeDisplayModel(d, L, eia, o->eia, o->mla == "ideal" ? MlaKind::Ideal : MlaKind::Real, g, es);
+    const PanelEmitter& panel = *dm.panel;
+
+    ViewSettings vs;
+    vs.spp = o->cam.spp;
+    vs.seed = o->cam.run.seed;
+    vs.progress = !o->cam.quiet;
+    vs.backgroundY = o->background;
+    vs.cullTiles = !o->noCull;
+    vs.spectral = o->spectral == "visible" ? SpectralSampling::Visible : SpectralSampling::Primaries;
+
+    if (!o->cam.quiet) {
+      std::printf("display:     %s (g = %s mm, %s MLA%s)\n", d.name.c_str(), num(g).c_str(),
+                  o->mla == "ideal" ? "ideal thin-lens" : "real refracting",
+                  panel.hasCoverGlass() ? ", cover glass" : "");
+      std::printf("eia:         %s (%d x %d px)\n", o->eia.c_str(), eia.width, eia.height);
+      printCamera(cs);
+      std::fflush(stdout);
+    }
+    const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ViewResult r = renderView(*cs.camera, cs.desc.sensor, *dm.mla, panel, dm.area, vs);
+    const double k = writeOutputs(r.image, cs, o->cam.out);
+
+    if (!r.stats.displayInView())
+      std::fprintf(stderr,
+                   "inim: warning: the display is out of the camera's view (%s): no camera ray reaches its active "
+                   "area; the image shows only the background\n",
+                   cs.pose.describe().c_str());
+    if (!o->cam.quiet) {
+      const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::printf("rendered:    %d spp, %s wavelengths (%d ray%s per sample%s), %.2f s render, %.2f s total "
+                  "(loading %.2f s)\n",
+                  vs.spp, spectralSamplingName(vs.spectral), r.stats.raysPerSample, r.stats.raysPerSample > 1 ? "s" : "",
+                  r.stats.dispersive ? ", dispersive" : "", r.stats.seconds, total, loadSeconds);
+      std::printf("rays:        %llu traced, %llu on the display, %llu reached the panel, %llu on a subpixel; %llu "
+                  "pixels skipped (their tiles cannot see the display)\n",
+                  (unsigned long long)r.stats.tracedRays, (unsigned long long)r.stats.displayRays,
+                  (unsigned long long)r.stats.panelRays, (unsigned long long)r.stats.emittingRays,
+                  (unsigned long long)r.stats.culledPixels);
+      std::printf("exposure:    %s%s\n", num(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
+      std::printf("wrote:       %s, %s\n", o->cam.out.c_str(), cs.png.c_str());
+    }
+  });
+}
+
+void addReferenceCommand(CLI::App& app) {
+  struct Opts {
+    CameraPoseOpts cam;
+    std::string scene, run, display, scale, rotate, translate;
+  };
+  auto o = std::make_shared<Opts>();
+  auto* cmd = app.add_subcommand(
+      "reference", "Render the scene itself through the viewing camera at the same pose, placed as for the EIA "
+                   "(the reference for inim view)");
+  cmd->add_option("--scene", o->scene, "Scene JSON (default: the run file's, else scenes/paper-fig7.json)");
+  cmd->add_option("--run", o->run, "Run file of the EIA (placement, scene, display); options override it");
+  auto* scaleOpt = cmd->add_option("--scale", o->scale, "Placement scale: S or sx,sy,sz (display mm per field unit)");
+  auto* rotOpt = cmd->add_option("--rotate-deg", o->rotate, "Placement rotation rx,ry,rz, degrees");
+  auto* trOpt = cmd->add_option("--translate-mm", o->translate, "Placement translation x,y,z, mm");
+  cmd->add_option("--display", o->display, "Display JSON (default: the run file's, else the paper prototype): "
+                                           "checks that the display area is in view");
+  addCameraPoseOptions(cmd, o->cam);
+
+  cmd->callback([o, scaleOpt, rotOpt, trOpt] {
+    const auto t0 = std::chrono::steady_clock::now();
+    ThreadLimit threads(o->cam.run.threads);
+    RunFile run;
+    if (!o->run.empty()) run = loadRunFile(o->run);
+    Placement pl;
+    if (run.placement) pl = *run.placement;
+    if (scaleOpt->count()) {
+      pl.scale = parseVec3(o->scale, "--scale", true);
+      pl.scaleKey = "--scale";
+      pl.source = "command line";
+    }
+    if (rotOpt->count()) pl.rotateDeg = parseVec3(o->rotate, "--rotate-deg");
+    if (trOpt->count()) pl.translateMm = parseVec3(o->translate, "--translate-mm");
+    if (rotOpt->count() || trOpt->count()) pl.source = "command line";
+    const Transform toDisplay = pl.toDisplay();  // singular placements fail here
+    CameraSetup cs = setupCamera(o->cam);
+
+    Display d = loadDisplay(!o->display.empty() ? o->display : run.display.value_or(defaultDisplayPath()));
+    const EiLayout L = computeLayout(d);
+    const DisplayArea area = lensletArrayArea(L, d.mla.pitchMm);
+
+    const std::string scenePath = !o->scene.empty() ? o->scene : run.scene.value_or(defaultScenePath());
+    if (lowerExt(scenePath) != ".json")
+      throw InputError("", "--scene", "\"" + scenePath + "\"", "an analytic scene (.json)");
+    auto scene = AnalyticScene::load(scenePath);
+    if (!o->cam.quiet) {
+      std::printf("scene:       %s; placement %s\n", scenePath.c_str(), pl.describe().c_str());
+      printCamera(cs);
+      std::fflush(stdout);
+    }
+    ReferenceSettings rs;
+    rs.spp = o->cam.spp;
+    rs.seed = o->cam.run.seed;
+    rs.progress = !o->cam.quiet;
+    ViewResult r = renderReference(*scene, toDisplay, *cs.camera, cs.desc.sensor, rs);
+    const double k = writeOutputs(r.image, cs, o->cam.out);
+
+    if (displayCoverage(*cs.camera, area) == 0.0)
+      std::fprintf(stderr,
+                   "inim: warning: the display is out of the camera's view (%s); the reference is rendered anyway\n",
+                   cs.pose.describe().c_str());
+    if (!o->cam.quiet) {
+      const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::printf("rendered:    %d spp, %.2f s render, %.2f s total; %llu rays, %llu hit the scene\n", rs.spp,
+                  r.stats.seconds, total, (unsigned long long)r.stats.tracedRays,
+                  (unsigned long long)r.stats.emittingRays);
+      std::printf("exposure:    %s%s\n", num(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
+      std::printf("wrote:       %s, %s\n", o->cam.out.c_str(), cs.png.c_str());
+    }
+  });
+}
+
+}  // namespace inim::cli

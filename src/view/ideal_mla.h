@@ -1,0 +1,46 @@
+#pragma once
+// The "pinhole-MLA" comparison model (DESIGN.md section 1, step 6; issue 4 item 4): every
+// lenslet an ideal paraxial thin lens of focal length f in the plane z = 0, on a square
+// lattice at the physical lens centres (EiLayout::lensX / lensY, pitch P), each owning its
+// whole square cell (fill factor 1). No refraction, no dispersion, no crosstalk, no Fresnel.
+//
+// The ideal-lens mapping uses slopes (tangents): a ray crossing z = 0 at x in the cell of the
+// lens centred at c, with slope s = (dx/dz, dy/dz) on the panel side, leaves toward the viewer
+// with slope s' = s - (x - c) / f. So rays through one panel-side slope meet at the focal
+// point c + f s (z = +f), a panel point at z = -g images to z = L with 1/f = 1/g + 1/L, and a
+// panel point at the focal plane (g = f) leaves as a parallel bundle. Traced backwards (the
+// view simulation): a ray from the viewer with slope s' at x continues to the panel with
+// s = s' + (x - c) / f and lands at x - g s.
+//
+// Rays that cross z = 0 outside the lenslet array (K P x L P about the lens centres) are
+// blocked (traceToPanel returns false).
+#include <vector>
+
+#include "display/ei_layout.h"
+#include "mla/mla_model.h"
+
+namespace inim {
+
+class IdealLensletMla final : public MlaModel {
+ public:
+  // Lens centres from the layout (physical pitch), focal length f, panel at z = -gapMm.
+  IdealLensletMla(const EiLayout& layout, double pitchMm, double focalLengthMm, double gapMm);
+  bool traceToPanel(const Ray& ray, float lambdaNm, Rng& rng, PanelArrival& out) const override;
+  bool isDispersive() const override { return false; }
+  float frontZ() const override { return 0.0f; }
+
+  double focalLengthMm() const { return f_; }
+  double gapMm() const { return g_; }
+  double pitchMm() const { return pitch_; }
+  // The lenslet cell holding a point of the plane z = 0 (false outside the array).
+  bool cellAt(double x, double y, int& k, int& l) const;
+  double lensX(int k) const { return x0_ + k * pitch_; }
+  double lensY(int l) const { return y0_ - l * pitch_; }
+
+ private:
+  int K_ = 0, L_ = 0;
+  double pitch_ = 0.0, f_ = 0.0, g_ = 0.0;
+  double x0_ = 0.0, y0_ = 0.0;  // centre of lens (0, 0): left column, top row
+};
+
+}  // namespace inim

@@ -1,0 +1,196 @@
+#include "view/panel_emitter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "camera/lens_system.h"
+#include "core/error.h"
+#include "spectral/cie.h"
+
+namespace inim {
+
+namespace {
+
+std::string sizeText(int w, int h) { return std::to_string(w) + " x " + std::to_string(h) + " px"; }
+
+// The sum of the three primaries (the panel white before scaling).
+class SumSpectrum final : public Spectrum {
+ public:
+  explicit SumSpectrum(std::array<SpectrumPtr, kNumPrimaries> s) : s_(std::move(s)) {}
+  float operator()(float l) const override { return (*s_[0])(l) + (*s_[1])(l) + (*s_[2])(l); }
+  float maxValue() const override { return s_[0]->maxValue() + s_[1]->maxValue() + s_[2]->maxValue(); }
+
+ private:
+  std::array<SpectrumPtr, kNumPrimaries> s_;
+};
+
+// Crossing-number test (half-open edges, so a point on a shared edge belongs to one side).
+bool insidePolygon(const std::vector<std::array<float, 2>>& p, float u, float v) {
+  bool in = false;
+  for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+    const float ui = p[i][0], vi = p[i][1], uj = p[j][0], vj = p[j][1];
+    if ((vi > v) != (vj > v)) {
+      const float uc = ui + (v - vi) / (vj - vi) * (uj - ui);
+      if (u < uc) in = !in;
+    }
+  }
+  return in;
+}
+
+}  // namespace
+
+PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& img, const std::string& file,
+                           double gapMm, const EmitterSettings& s)
+    : panel_(panel), settings_(s) {
+  panelW_ = L.panelW;
+  panelH_ = L.panelH;
+  pitch_ = L.pixelMm;
+  gap_ = gapMm;
+  const bool panelSized = img.width == L.panelW && img.height == L.panelH;
+  const bool eiaSized = img.width == L.eiaW && img.height == L.eiaH;
+  if (!panelSized && !eiaSized)
+    throw InputError(file, "resolution", sizeText(img.width, img.height),
+                     "the panel's resolution " + sizeText(L.panelW, L.panelH) +
+                         (panel.file.empty() ? std::string() : " (" + panel.file + ")") +
+                         " or the EIA area's " + sizeText(L.eiaW, L.eiaH));
+  if (img.numChannels() < 3)
+    throw InputError(file, "channels", std::to_string(img.numChannels()), "at least 3 channels (R, G, B drive values)");
+  int ch[3];
+  const bool named = img.channelIndex("R") >= 0 && img.channelIndex("G") >= 0 && img.channelIndex("B") >= 0;
+  for (int c = 0; c < 3; ++c) ch[c] = named ? img.channelIndex(channelName(c)) : c;
+  const int x0 = panelSized ? 0 : L.panelCol0, y0 = panelSized ? 0 : L.panelRow0;
+  drive_.assign(size_t(panelW_) * panelH_ * 3, 0.0f);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        float v = img.at(x, y, ch[c]);
+        if (!std::isfinite(v))
+          throw InputError(file, "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") " + channelName(c),
+                           std::isnan(v) ? "NaN" : "Inf", "finite drive values");
+        if (s.encoded) v = float(panel.eotf.decode(v));
+        drive_[(size_t(y0 + y) * panelW_ + (x0 + x)) * 3 + size_t(c)] = std::clamp(v, 0.0f, 1.0f);
+      }
+  // Display x = (u - uOff) p, y = (vOff - v) p, with (u, v) continuous panel pixel coordinates.
+  uOff_ = 0.5 * L.eiaW + L.panelCol0;
+  vOff_ = 0.5 * L.eiaH + L.panelRow0;
+
+  const SubpixelLayout& sl = panel.subpixels;
+  tileW_ = std::max(1, sl.tileW);
+  tileH_ = std::max(1, sl.tileH);
+  const double tileArea = double(tileW_) * tileH_;
+  for (int c = 0; c < kNumPrimaries; ++c) {
+    const double a = sl.emittingArea(c);
+    if (!(a > 0.0))
+      throw InputError(panel.file, "subpixel_layout", std::string("no ") + channelName(c) + " subpixel",
+                       "at least one subpixel of each channel R, G, B");
+    areaFactor_[size_t(c)] = tileArea / a;
+  }
+  for (const auto& sp : sl.subpixels) {
+    Poly p;
+    p.channel = sp.channel;
+    p.u0 = p.v0 = 1e30f;
+    p.u1 = p.v1 = -1e30f;
+    double cx = 0, cy = 0, a2 = 0;
+    for (size_t i = 0; i < sp.polygon.size(); ++i) {
+      const auto& q = sp.polygon[i];
+      const auto& r = sp.polygon[(i + 1) % sp.polygon.size()];
+      const double cr = q[0] * r[1] - r[0] * q[1];
+      a2 += cr;
+      cx += (q[0] + r[0]) * cr;
+      cy += (q[1] + r[1]) * cr;
+      p.pts.push_back({float(q[0]), float(q[1])});
+      p.u0 = std::min(p.u0, float(q[0]));
+      p.u1 = std::max(p.u1, float(q[0]));
+      p.v0 = std::min(p.v0, float(q[1]));
+      p.v1 = std::max(p.v1, float(q[1]));
+    }
+    if (a2 != 0.0) {
+      cx /= 3.0 * a2;
+      cy /= 3.0 * a2;
+    }
+    p.pixU = std::clamp(int(std::floor(cx)), 0, tileW_ - 1);
+    p.pixV = std::clamp(int(std::floor(cy)), 0, tileH_ - 1);
+    polys_.push_back(std::move(p));
+  }
+
+  for (int c = 0; c < kNumPrimaries; ++c) primary_[size_t(c)] = primarySpectrum(panel.primaries[size_t(c)]);
+  const double yWhite = spectrumToXYZ(SumSpectrum(primary_)).y;
+  if (!(yWhite > 0.0))
+    throw InputError(panel.file, "primaries", "(no visible emission)", "primaries with a non-zero luminance");
+  l0_ = (s.absolute ? panel.peakLuminanceCdM2 : 1.0) / yWhite;
+  uniformIntensity_ = panel.angularProfile == "uniform";
+
+  if (s.coverGlass && panel.coverGlass) {
+    try {
+      glassIor_ = MaterialCatalog::standard().dielectric(panel.coverGlass->material);
+    } catch (const InputError& e) {
+      throw InputError(panel.file, "cover_glass.material", "\"" + panel.coverGlass->material + "\"",
+                       "a dielectric of spectra/materials.json (" + std::string(e.what()) + ")");
+    }
+    glassT_ = panel.coverGlass->thicknessMm;
+  }
+}
+
+PanelEmission PanelEmitter::lookup(double x, double y) const { return lookupPx(x / pitch_ + uOff_, vOff_ - y / pitch_); }
+
+PanelEmission PanelEmitter::lookupPx(double u, double v) const {
+  if (!(u >= 0.0 && v >= 0.0 && u < panelW_ && v < panelH_)) return {};
+  const double tu = std::floor(u / tileW_), tv = std::floor(v / tileH_);
+  const float fu = float(u - tu * tileW_), fv = float(v - tv * tileH_);
+  for (const Poly& p : polys_) {
+    if (fu < p.u0 || fu > p.u1 || fv < p.v0 || fv > p.v1) continue;
+    if (!insidePolygon(p.pts, fu, fv)) continue;
+    const int col = int(tu) * tileW_ + p.pixU, row = int(tv) * tileH_ + p.pixV;
+    if (col >= panelW_ || row >= panelH_) return {};
+    return {p.channel, drive_[(size_t(row) * panelW_ + col) * 3 + size_t(p.channel)]};
+  }
+  return {};
+}
+
+float PanelEmitter::angular(float cosTheta) const {
+  float a = 1.0f;
+  if (uniformIntensity_) a = 1.0f / std::max(cosTheta, 0.05f);
+  if (settings_.cosExponent != 0.0) a *= std::pow(std::max(cosTheta, 0.0f), float(settings_.cosExponent));
+  return a;
+}
+
+PanelEmission PanelEmitter::emit(const Point3& p, const Vec3& dIn, float lambdaNm) const {
+  const Vec3 d = glm::normalize(dIn);
+  if (!(d.z < 0.0f)) return {};
+  if (!glassIor_) {
+    PanelEmission e = lookup(p.x, p.y);
+    if (e.channel >= 0) e.weight *= angular(-d.z);
+    return e;
+  }
+  // Back along the ray to the plate's top, refract into the glass, go down to z = -g.
+  const double zTop = -gap_ + glassT_;
+  const Vec3d dd(d);
+  const Point3d top = Point3d(p) + dd * ((zTop - double(p.z)) / dd.z);
+  const double n = glassIor_->n(lambdaNm);
+  Vec3d dg;
+  if (!snellRefract(dd, Vec3d(0, 0, 1), 1.0, n, dg)) return {};  // cannot happen from air
+  const Point3d q = top + dg * (-glassT_ / dg.z);
+  PanelEmission e = lookup(q.x, q.y);
+  if (e.channel < 0 || e.weight == 0.0f) return e;
+  const double t = fresnelTransmittance(-dd.z, 1.0, n) / fresnelTransmittance(1.0, 1.0, n);
+  e.weight *= float(t) * angular(float(-dg.z));
+  return e;
+}
+
+float PanelEmitter::radiance(const Point3& p, const Vec3& d, float lambdaNm) const {
+  const PanelEmission e = emit(p, d, lambdaNm);
+  return e.channel < 0 ? 0.0f : e.weight * channelSpectrum(e.channel, lambdaNm);
+}
+
+float PanelEmitter::channelSpectrum(int c, float lambdaNm) const {
+  return float(areaFactor_[size_t(c)] * l0_) * (*primary_[size_t(c)])(lambdaNm);
+}
+
+float PanelEmitter::averageChannelSpectrum(int c, float lambdaNm) const {
+  return float(l0_) * (*primary_[size_t(c)])(lambdaNm);
+}
+
+Vec3d PanelEmitter::whiteXyz() const { return spectrumToXYZ(SumSpectrum(primary_)) * l0_; }
+
+}  // namespace inim

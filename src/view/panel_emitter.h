@@ -1,0 +1,136 @@
+#pragma once
+// What the panel emits: the spectral radiance leaving a point of the panel's emitting plane
+// (display frame, z = -g) in a direction, at a wavelength, for an EIA of drive values.
+//
+//   PanelEmitter e(display.panel, layout, readImage("eia.exr"), "eia.exr");
+//   PanelEmission em = e.emit(arrival, lambdaNm);          // from an MlaModel arrival
+//   float L = em.weight * e.channelSpectrum(em.channel, lambdaNm);
+//
+// Model (DESIGN.md section 1, step 6):
+//  - Pixels. EIA pixel (c, r) is panel pixel (panelCol0 + c, panelRow0 + r); its centre is at
+//    x = (c + 0.5 - eiaW/2) p, y = (eiaH/2 - r - 0.5) p (ei_layout.h). Points off the panel
+//    emit nothing.
+//  - Subpixels. The panel's SubpixelLayout repeats every tileW x tileH pixels from panel pixel
+//    (0, 0). A point inside a subpixel polygon emits that subpixel's primary; the black matrix
+//    (everything outside the polygons) emits nothing. A polygon belongs to the pixel of the tile
+//    that holds its area centroid, and takes that pixel's drive value of its channel.
+//  - Drive values. The EIA holds LINEAR drive values in [0, 1] (what `inim eia` writes in its
+//    EXR: the panel's EOTF has already been applied to the encoded values), so radiance is
+//    proportional to the drive value; values are clamped to [0, 1] (a panel cannot emit more
+//    than full drive or less than black). An 8-bit image (PNG) holds ENCODED values: pass
+//    `encoded = true` and the panel's EOTF decodes them first.
+//  - Spectrum and scale. A subpixel of channel c at drive d emits
+//        L(lambda) = d * K_c * L0 * primary_c(lambda) * a(theta) * T(theta)/T(0)
+//    with K_c = tile area / emitting area of channel c (the area normalisation: full drive on
+//    every subpixel averages, over a tile, to L0 * sum_c primary_c, the panel white, whatever the
+//    fill factor), and L0 chosen so that the panel white has CIE luminance Y (spectrumToXYZ
+//    normalisation, integral of y_bar = 1) = the panel's peak_luminance_cd_m2 (absolute units:
+//    radiance is then in "cd/m^2 per unit Y", and camera RGB of a D65 grey of luminance Y is
+//    (Y, Y, Y)), or Y = 1 with `absolute = false`.
+//  - Angular profile a(theta), theta the emission angle from the normal (inside the cover glass
+//    when there is one): "lambertian" = constant radiance (a = 1); "uniform" = uniform radiant
+//    intensity (a = 1/cos theta, capped at cos theta = 0.05), times cos^n theta with
+//    `cosExponent` = n (0 by default). a(0) = 1: peak luminance is the on-axis value.
+//  - Cover glass (when the panel has one and `coverGlass` is on): a flat plate of thickness t and
+//    index n(lambda) from spectra/materials.json on the emitting plane (z from -g to -g + t).
+//    The arriving ray (traced through air to z = -g by the MLA model) is refracted at the plate's
+//    top, z = -g + t, and reaches the emitter at the laterally offset point; the exterior
+//    radiance is scaled by the unpolarised Fresnel transmittance relative to normal incidence,
+//    T(theta)/T(0), so the peak luminance stays the on-axis value seen through the glass.
+//    A dispersive glass makes the emitter wavelength dependent (isDispersive()).
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+#include "core/image.h"
+#include "display/ei_layout.h"
+#include "display/panel.h"
+#include "mla/mla_model.h"
+#include "spectral/dispersion.h"
+#include "spectral/spectrum.h"
+
+namespace inim {
+
+using Vec2d = glm::dvec2;  // (the same alias as camera/lens_system.h)
+
+struct EmitterSettings {
+  bool absolute = true;      // L0 from the peak luminance (cd/m^2); false: panel white Y = 1
+  double cosExponent = 0.0;  // extra cos^n theta on the panel's angular profile
+  bool coverGlass = true;    // model the panel's cover glass when it has one
+  bool encoded = false;      // the drive image holds EOTF-encoded values (decode them first)
+};
+
+// The emitting subpixel at a point and the wavelength-independent part of its radiance:
+// L(lambda) = weight * channelSpectrum(channel, lambda). channel = -1: nothing emits there.
+struct PanelEmission {
+  int channel = -1;
+  float weight = 0.0f;
+};
+
+class PanelEmitter {
+ public:
+  // `drive`: the EIA (channels R, G, B, found by name, else the first three) at the panel's
+  // resolution, or at the EIA area's size (then placed where the layout puts it). `file` names
+  // the image in errors. InputError (naming the file, the key "resolution" and both sizes) for
+  // any other size; InputError for fewer than 3 channels, non-finite values, or an unknown
+  // cover-glass material. `gapMm`: where the emitting plane sits (z = -gapMm), normally the
+  // display's reconstruction gap.
+  PanelEmitter(const Panel& panel, const EiLayout& layout, const Image& drive, const std::string& file,
+               double gapMm, const EmitterSettings& settings = {});
+
+  // The subpixel under a point of the emitting plane (display frame x, y in mm), with its
+  // drive value as weight (no angular or glass factor).
+  PanelEmission lookup(double x, double y) const;
+  // The same in continuous panel pixel coordinates (u right, v down).
+  PanelEmission lookupPx(double u, double v) const;
+  Vec2d toPanelPx(double x, double y) const { return {x / pitch_ + uOff_, vOff_ - y / pitch_}; }
+  // Emission toward the viewer for a ray that reached the emitting plane at `a.p` travelling
+  // along `a.d` (d.z < 0), at a wavelength (used for the cover glass only).
+  PanelEmission emit(const Point3& p, const Vec3& d, float lambdaNm) const;
+  PanelEmission emit(const PanelArrival& a, float lambdaNm) const { return emit(a.p, a.d, lambdaNm); }
+  // Full spectral radiance along -d at p (0 on the black matrix and off the panel).
+  float radiance(const Point3& p, const Vec3& d, float lambdaNm) const;
+
+  // Radiance spectrum of a channel's subpixel at full drive on axis: K_c L0 primary_c(lambda).
+  float channelSpectrum(int channel, float lambdaNm) const;
+  // L0 primary_c(lambda): a channel's contribution to the tile-averaged panel white.
+  float averageChannelSpectrum(int channel, float lambdaNm) const;
+  // XYZ (spectrumToXYZ normalisation) of the panel white: the tile average at full drive.
+  Vec3d whiteXyz() const;
+  double areaFactor(int channel) const { return areaFactor_[size_t(channel)]; }  // K_c
+  double luminanceScale() const { return l0_; }                                     // L0
+  bool isDispersive() const { return glassIor_ != nullptr && glassIor_->isDispersive(); }
+  bool hasCoverGlass() const { return glassIor_ != nullptr; }
+  double gapMm() const { return gap_; }
+  // Panel extent in the display frame (mm), for framing and warnings.
+  double panelMinX() const { return -uOff_ * pitch_; }
+  double panelMaxX() const { return (panelW_ - uOff_) * pitch_; }
+  double panelMinY() const { return (vOff_ - panelH_) * pitch_; }
+  double panelMaxY() const { return vOff_ * pitch_; }
+  const Panel& panel() const { return panel_; }
+
+ private:
+  struct Poly {
+    int channel = 0;
+    int pixU = 0, pixV = 0;  // pixel of the tile that owns it
+    float u0, v0, u1, v1;    // bounding box, tile coordinates (pixels)
+    std::vector<std::array<float, 2>> pts;
+  };
+  float angular(float cosTheta) const;
+
+  Panel panel_;
+  EmitterSettings settings_;
+  int panelW_ = 0, panelH_ = 0, tileW_ = 1, tileH_ = 1;
+  double pitch_ = 0.0, uOff_ = 0.0, vOff_ = 0.0, gap_ = 0.0;
+  std::vector<float> drive_;  // panelW x panelH x 3, clamped to [0, 1]
+  std::vector<Poly> polys_;
+  std::array<SpectrumPtr, kNumPrimaries> primary_;
+  std::array<double, kNumPrimaries> areaFactor_{};
+  double l0_ = 1.0;
+  bool uniformIntensity_ = false;
+  IorPtr glassIor_;
+  double glassT_ = 0.0;
+};
+
+}  // namespace inim

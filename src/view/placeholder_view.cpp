@@ -1,1 +1,0 @@
-// placeholder: stage view is being written

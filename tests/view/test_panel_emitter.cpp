@@ -1,0 +1,257 @@
+// PanelEmitter: subpixel geometry, black matrix, area normalisation to the panel white, drive
+// values, angular profile, cover glass (refraction offset and Fresnel), and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "camera/lens_system.h"
+#include "core/error.h"
+#include "spectral/cie.h"
+#include "spectral/dispersion.h"
+#include "view/panel_emitter.h"
+#include "view_test_util.h"
+
+using namespace inim;
+using namespace view_test;
+
+namespace {
+
+// Display-frame point of continuous panel pixel coordinates (u right, v down from the top-left).
+Point3 panelPoint(const EiLayout& L, double u, double v, double g) {
+  const double uOff = 0.5 * L.eiaW + L.panelCol0, vOff = 0.5 * L.eiaH + L.panelRow0;
+  return Point3(float((u - uOff) * L.pixelMm), float((vOff - v) * L.pixelMm), float(-g));
+}
+
+const Vec3 kDown(0.0f, 0.0f, -1.0f);
+
+// XYZ of the emission averaged over an area of the panel: a midpoint grid of n x n points
+// over [u0, u0 + w] x [v0, v0 + h] (pixel units), integrated over 360-830 nm at 1 nm.
+Vec3d averageXyz(const PanelEmitter& e, const EiLayout& L, double u0, double v0, double w, double h, int n) {
+  std::vector<double> chan(3, 0.0);  // mean weight per channel
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Point3 p = panelPoint(L, u0 + (i + 0.5) * w / n, v0 + (j + 0.5) * h / n, e.gapMm());
+      const PanelEmission em = e.emit(p, kDown, 550.0f);
+      if (em.channel >= 0) chan[size_t(em.channel)] += em.weight;
+    }
+  for (auto& c : chan) c /= double(n) * n;
+  Vec3d xyz(0.0);
+  for (int l = 360; l <= 830; ++l) {
+    double L0 = 0.0;
+    for (int c = 0; c < 3; ++c) L0 += chan[size_t(c)] * e.channelSpectrum(c, float(l));
+    const double w = (l == 360 || l == 830) ? 0.5 : 1.0;
+    xyz += w * L0 * Vec3d(cie::X()(float(l)), cie::Y()(float(l)), cie::Z()(float(l)));
+  }
+  return xyz / cie::yIntegral();
+}
+
+}  // namespace
+
+TEST(PanelEmitter, FullWhitePixelAveragesToPanelWhite) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  const EiLayout L = computeLayout(d);
+  PanelEmitter e(d.panel, L, uniformEia(L, 1, 1, 1), "white.exr", 1.2);
+  const Vec3d white = e.whiteXyz();
+  EXPECT_NEAR(white.y, d.panel.peakLuminanceCdM2, 1e-6 * d.panel.peakLuminanceCdM2);
+  // The stripe's edges sit on multiples of 1/30 px: a 600 x 600 midpoint grid counts areas exactly.
+  const Vec3d avg = averageXyz(e, L, 7.0, 5.0, 1.0, 1.0, 600);
+  std::printf("[ measured ] stripe pixel average / panel white XYZ: %.6f %.6f %.6f\n", avg.x / white.x, avg.y / white.y,
+              avg.z / white.z);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(avg[k] / white[k], 1.0, 1e-3) << "XYZ component " << k;
+  // The same white from the other pixel of the panel.
+  const Vec3d avg2 = averageXyz(e, L, 20.0, 11.0, 1.0, 1.0, 600);
+  EXPECT_NEAR(avg2.y / white.y, 1.0, 1e-3);
+}
+
+TEST(PanelEmitter, DiamondTileAveragesToPanelWhite) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  d.panel.subpixels = diamondLayout(0.8);
+  const EiLayout L = computeLayout(d);
+  PanelEmitter e(d.panel, L, uniformEia(L, 1, 1, 1), "white.exr", 1.2);
+  const Vec3d white = e.whiteXyz();
+  const Vec3d avg = averageXyz(e, L, 6.0, 4.0, 2.0, 2.0, 1600);
+  std::printf("[ measured ] diamond tile average / panel white XYZ: %.6f %.6f %.6f\n", avg.x / white.x, avg.y / white.y,
+              avg.z / white.z);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(avg[k] / white[k], 1.0, 2e-3) << "XYZ component " << k;
+}
+
+TEST(PanelEmitter, BlackMatrixEmitsNothing) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  const EiLayout L = computeLayout(d);
+  PanelEmitter e(d.panel, L, uniformEia(L, 1, 1, 1), "white.exr", 1.2);
+  // Fill 0.8: margins of 0.1 of each stripe's width and of the pixel height.
+  for (auto uv : {std::pair{8.01, 6.5}, std::pair{8.5, 6.05}, std::pair{8.5, 6.97}, std::pair{8.34, 6.5}}) {
+    const Point3 p = panelPoint(L, uv.first, uv.second, 1.2);
+    const PanelEmission em = e.emit(p, kDown, 550.0f);
+    EXPECT_EQ(em.channel, -1) << uv.first << ", " << uv.second;
+    EXPECT_EQ(e.radiance(p, kDown, 530.0f), 0.0f);
+  }
+  // Off the panel: nothing either.
+  EXPECT_EQ(e.emit(panelPoint(L, -0.5, 3.0, 1.2), kDown, 550.0f).channel, -1);
+  EXPECT_EQ(e.emit(panelPoint(L, 3.0, L.panelH + 0.5, 1.2), kDown, 550.0f).channel, -1);
+}
+
+TEST(PanelEmitter, StripeRedSubpixelEmitsOnlyRedPrimary) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  const EiLayout L = computeLayout(d);
+  Image eia = uniformEia(L, 0.3f, 0.6f, 0.9f);
+  PanelEmitter e(d.panel, L, eia, "eia.exr", 1.2);
+  const SpectrumPtr red = primarySpectrum(d.panel.primaries[0]);
+  const double K = e.areaFactor(0) * e.luminanceScale();
+  EXPECT_NEAR(e.areaFactor(0), 1.0 / (0.8 * 0.8 / 3.0), 1e-9);
+  for (double u : {1.0 / 6.0, 0.05, 0.29}) {  // centre and near both edges of the R stripe
+    const Point3 p = panelPoint(L, 9.0 + u, 4.5, 1.2);
+    const PanelEmission em = e.emit(p, kDown, 550.0f);
+    ASSERT_EQ(em.channel, 0);
+    EXPECT_FLOAT_EQ(em.weight, 0.3f);
+    for (float l : {450.0f, 530.0f, 600.0f, 625.0f, 700.0f})
+      EXPECT_NEAR(e.radiance(p, kDown, l), 0.3 * K * (*red)(l), 1e-6 * K) << l;
+  }
+  // Green and blue stripes of the same pixel.
+  EXPECT_EQ(e.emit(panelPoint(L, 9.5, 4.5, 1.2), kDown, 550.0f).channel, 1);
+  EXPECT_FLOAT_EQ(e.emit(panelPoint(L, 9.5, 4.5, 1.2), kDown, 550.0f).weight, 0.6f);
+  EXPECT_EQ(e.emit(panelPoint(L, 9.83, 4.5, 1.2), kDown, 550.0f).channel, 2);
+}
+
+TEST(PanelEmitter, PixelAddressingFollowsTheLayout) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  const EiLayout L = computeLayout(d);
+  Image eia = uniformEia(L, 0, 0, 0);
+  eia.at(L.panelCol0 + 5, L.panelRow0 + 2, 1) = 1.0f;  // one green subpixel lit
+  PanelEmitter e(d.panel, L, eia, "eia.exr", 1.2);
+  // EIA pixel (5, 2) has its centre at x = (5.5 - W/2) p, y = (H/2 - 2.5) p.
+  const double x = L.pixelCentreX(5), y = L.pixelCentreY(2);
+  PanelEmission em = e.lookup(x, y);
+  EXPECT_EQ(em.channel, 1);
+  EXPECT_EQ(em.weight, 1.0f);
+  EXPECT_EQ(e.lookup(x + L.pixelMm, y).weight, 0.0f);
+  EXPECT_EQ(e.lookup(x, y - L.pixelMm).weight, 0.0f);
+  // An EIA-area-sized image is placed the same way.
+  Image area(L.eiaW, L.eiaH, {"R", "G", "B"});
+  area.at(5, 2, 1) = 1.0f;
+  PanelEmitter e2(d.panel, L, area, "area.exr", 1.2);
+  EXPECT_EQ(e2.lookup(x, y).weight, 1.0f);
+}
+
+TEST(PanelEmitter, CustomPolygonLayout) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  SubpixelLayout s;
+  s.type = "custom";
+  s.tileW = 1;
+  s.tileH = 1;
+  s.subpixels = {{0, {{0.0, 0.0}, {0.5, 0.0}, {0.0, 0.5}}},      // red triangle, top-left
+                 {1, {{1.0, 0.0}, {1.0, 1.0}, {0.5, 0.5}}},      // green triangle, right
+                 {2, {{0.0, 1.0}, {0.4, 0.6}, {0.6, 1.0}}}};     // blue triangle, bottom
+  d.panel.subpixels = s;
+  const EiLayout L = computeLayout(d);
+  PanelEmitter e(d.panel, L, uniformEia(L, 1, 1, 1), "eia.exr", 1.2);
+  EXPECT_EQ(e.emit(panelPoint(L, 3.1, 2.1, 1.2), kDown, 550.0f).channel, 0);
+  EXPECT_EQ(e.emit(panelPoint(L, 3.3, 2.3, 1.2), kDown, 550.0f).channel, -1);  // beyond the hypotenuse
+  EXPECT_EQ(e.emit(panelPoint(L, 3.9, 2.5, 1.2), kDown, 550.0f).channel, 1);
+  EXPECT_EQ(e.emit(panelPoint(L, 3.3, 2.95, 1.2), kDown, 550.0f).channel, 2);
+  EXPECT_NEAR(e.areaFactor(0), 1.0 / 0.125, 1e-12);
+}
+
+TEST(PanelEmitter, AngularProfiles) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  const EiLayout L = computeLayout(d);
+  const Point3 p = panelPoint(L, 9.5, 4.5, 1.2);
+  const float th = 0.5f;
+  const Vec3 dir(std::sin(th), 0.0f, -std::cos(th));
+  PanelEmitter lam(d.panel, L, uniformEia(L, 1, 1, 1), "eia.exr", 1.2);
+  EXPECT_FLOAT_EQ(lam.emit(p, dir, 550.0f).weight, lam.emit(p, kDown, 550.0f).weight);  // Lambertian
+  EmitterSettings s;
+  s.cosExponent = 3.0;
+  PanelEmitter cosn(d.panel, L, uniformEia(L, 1, 1, 1), "eia.exr", 1.2, s);
+  EXPECT_NEAR(cosn.emit(p, dir, 550.0f).weight, std::pow(std::cos(th), 3.0f), 1e-6);
+  EXPECT_FLOAT_EQ(cosn.emit(p, kDown, 550.0f).weight, 1.0f);
+  d.panel.angularProfile = "uniform";
+  PanelEmitter uni(d.panel, L, uniformEia(L, 1, 1, 1), "eia.exr", 1.2);
+  EXPECT_NEAR(uni.emit(p, dir, 550.0f).weight, 1.0f / std::cos(th), 1e-5);
+  // Relative units: the panel white has Y = 1.
+  EmitterSettings rel;
+  rel.absolute = false;
+  PanelEmitter r(d.panel, L, uniformEia(L, 1, 1, 1), "eia.exr", 1.2, rel);
+  EXPECT_NEAR(r.whiteXyz().y, 1.0, 1e-9);
+}
+
+TEST(PanelEmitter, CoverGlassOffsetsAndFresnel) {
+  Display d = smallDisplay(6, 4, 8, 0.05, 0.4, 1.0, 1.5);
+  d.panel.coverGlass = CoverGlass{0.5, "N-BK7"};
+  const EiLayout L = computeLayout(d);
+  // Every pixel a different drive value, so the lookup point can be identified.
+  Image eia = uniformEia(L, 0, 0, 0);
+  for (int y = 0; y < L.panelH; ++y)
+    for (int x = 0; x < L.panelW; ++x) eia.at(x, y, 1) = float(1 + x + y * L.panelW) / float(1 + L.panelW * L.panelH);
+  PanelEmitter glass(d.panel, L, eia, "eia.exr", 1.5);
+  d.panel.coverGlass.reset();
+  PanelEmitter bare(d.panel, L, eia, "eia.exr", 1.5);
+  ASSERT_TRUE(glass.hasCoverGlass());
+  EXPECT_TRUE(glass.isDispersive());
+  EXPECT_FALSE(bare.isDispersive());
+  const float lambda = 530.0f;
+  const double n = MaterialCatalog::standard().dielectric("N-BK7")->n(lambda);
+  const double th = 0.6, thG = std::asin(std::sin(th) / n);
+  const Vec3 dir(float(std::sin(th)), 0.0f, float(-std::cos(th)));
+  // The glass moves the emitting point back by t (tan th - tan thG) against the ray's x travel:
+  // aim so that it lands on the centre of a green stripe.
+  const double shift = 0.5 * (std::tan(th) - std::tan(thG));
+  const Point3 target = panelPoint(L, 12.5, 10.5, 1.5);
+  const Point3 p = panelPoint(L, 12.5 + shift / L.pixelMm, 10.5, 1.5);
+  const PanelEmission eg = glass.emit(p, dir, lambda);
+  const PanelEmission eb = bare.lookup(target.x, target.y);
+  EXPECT_NE(bare.lookup(p.x, p.y).weight, eb.weight);  // without the offset: another pixel
+  ASSERT_EQ(eg.channel, 1);
+  ASSERT_EQ(eb.channel, 1);
+  const double T = fresnelTransmittance(std::cos(th), 1.0, n) / fresnelTransmittance(1.0, 1.0, n);
+  EXPECT_NEAR(eg.weight, eb.weight * T, 1e-5);
+  EXPECT_LT(T, 1.0);
+  // At normal incidence the glass changes nothing.
+  EXPECT_FLOAT_EQ(glass.emit(target, kDown, lambda).weight, bare.emit(target, kDown, lambda).weight);
+}
+
+TEST(PanelEmitter, ResolutionMismatchIsAnInputError) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  const EiLayout L = computeLayout(d);
+  Image wrong(L.panelW + 1, L.panelH, {"R", "G", "B"});
+  try {
+    PanelEmitter e(d.panel, L, wrong, "my-eia.exr", 1.2);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(e.file(), "my-eia.exr");
+    EXPECT_EQ(e.key(), "resolution");
+    EXPECT_NE(m.find(std::to_string(L.panelW + 1) + " x " + std::to_string(L.panelH)), std::string::npos) << m;
+    EXPECT_NE(m.find(std::to_string(L.panelW) + " x " + std::to_string(L.panelH)), std::string::npos) << m;
+  }
+}
+
+TEST(PanelEmitter, NonFiniteDriveIsAnInputError) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  const EiLayout L = computeLayout(d);
+  Image eia = uniformEia(L, 1, 1, 1);
+  eia.at(3, 2, 1) = std::numeric_limits<float>::quiet_NaN();
+  try {
+    PanelEmitter e(d.panel, L, eia, "nan-eia.exr", 1.2);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "nan-eia.exr");
+    EXPECT_NE(std::string(e.what()).find("NaN"), std::string::npos);
+  }
+  Image two(L.panelW, L.panelH, {"R", "G"});
+  EXPECT_THROW(PanelEmitter(d.panel, L, two, "two.exr", 1.2), InputError);
+}
+
+TEST(PanelEmitter, DriveValuesAreClampedAndEncodedImagesDecoded) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  const EiLayout L = computeLayout(d);
+  PanelEmitter over(d.panel, L, uniformEia(L, 2.0f, -1.0f, 0.5f), "eia.exr", 1.2);
+  EXPECT_EQ(over.emit(panelPoint(L, 9.17, 4.5, 1.2), kDown, 550.0f).weight, 1.0f);
+  EXPECT_EQ(over.emit(panelPoint(L, 9.5, 4.5, 1.2), kDown, 550.0f).weight, 0.0f);
+  EmitterSettings s;
+  s.encoded = true;  // sRGB EOTF: 0.5 encoded -> 0.214 linear
+  PanelEmitter enc(d.panel, L, uniformEia(L, 0.5f, 0.5f, 0.5f), "eia.png", 1.2, s);
+  EXPECT_NEAR(enc.emit(panelPoint(L, 9.17, 4.5, 1.2), kDown, 550.0f).weight, d.panel.eotf.decode(0.5), 1e-6);
+}
