@@ -21,5 +21,8 @@ echo "run: orthoscopic EIA of paper-fig7 on the paper's display (6,215,625 rays,
 echo "run: the scene itself, rendered spectrally from 350 mm -> $OUT/paper-fig7.exr, .png"
 "$INIM" render --out "$OUT/paper-fig7.exr" --width 1280 --height 560 --spp 32
 
+echo "run: the paper's Fig. 11 in software: 5 reconstructed + 5 reference views -> $OUT/fig11/"
+"$INIM" fig11 --out "$OUT/fig11"
+
 echo "run: done; outputs in $OUT"
 ls -l "$OUT"
