@@ -8,10 +8,15 @@
 //   eia/paper-fig7         full orthoscopic EIA of the default display (6,215,625 rays, 1 spp)
 //   eia-query/bare-embree  rtcIntersect1 over that EIA's 6.2M query rays
 //   eia-query/inim-field   the same query rays through Field::query
+//   view/spp:N             `inim view` of the default EIA (real MLA, real lens, 0 deg) at
+//                          --view-width, N spp; the table after the run gives each one's RMSE
+//                          against view/reference (16x the largest N spp), relative to its mean
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 #include <embree3/rtcore.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -24,6 +29,10 @@
 #include "rays/pinhole_rays.h"
 #include "synthesis/eia_synthesis.h"
 #include "synthesis/orthoscopic.h"
+#include "camera/camera_config.h"
+#include "view/display_model.h"
+#include "view/view_camera.h"
+#include "view/view_renderer.h"
 
 #include "cli/commands.h"
 #include "core/parallel.h"
@@ -194,6 +203,73 @@ void benchEiaField(benchmark::State& state) {
   fieldLoop(state, eiaContext().queries, eiaContext().lambdas);
 }
 
+// The view sweep: the default EIA shown on the default display, seen by the default camera.
+struct ViewContext {
+  int width = 648;
+  std::vector<int> spps = {1, 4, 16};
+  std::unique_ptr<DisplayModel> dm;
+  CameraDescription desc;
+  std::unique_ptr<CameraModel> camera;
+  std::map<int, Image> images;    // by spp
+  std::map<int, double> seconds;  // by spp
+};
+ViewContext& viewContext() {
+  static ViewContext v;
+  return v;
+}
+// Builds the display and camera on first use (after --view-width has been applied).
+ViewContext& builtViewContext() {
+  ViewContext& v = viewContext();
+  if (!v.dm) {
+    EiaContext& e = eiaContext();
+    SynthesisSettings s;
+    s.autoExposure = true;
+    s.progress = false;
+    s.spp = 4;
+    SynthesisResult r = synthesizeEia(e.layout, e.display.panel, *context().scene, s);
+    v.dm = std::make_unique<DisplayModel>(makeDisplayModel(e.display, e.layout, r.eia, "(default EIA)", MlaKind::Real));
+    v.desc = loadCameraDescription(defaultCameraPath());
+    DisplayPose pose;
+    pose.distanceMm = v.desc.distanceMm;
+    ViewCameraOptions co;
+    co.width = v.width;
+    v.camera = makeViewCamera(v.desc, pose, co);
+  }
+  return v;
+}
+
+void benchView(benchmark::State& state) {
+  ViewContext& v = builtViewContext();
+  ViewSettings s;
+  s.spp = int(state.range(0));
+  s.progress = false;
+  for (auto _ : state) {
+    ViewResult r = renderView(*v.camera, v.desc.sensor, *v.dm->mla, *v.dm->panel, v.dm->area, s);
+    v.images[s.spp] = std::move(r.image);
+    v.seconds[s.spp] = r.stats.seconds;
+  }
+  state.counters["peak_RSS_MiB"] = peakRssMiB();
+}
+
+// RMSE of `a` against `ref` over the pixels where the reference has signal, relative to the
+// reference's mean there.
+double relativeRmse(const Image& a, const Image& ref) {
+  double se = 0, sum = 0;
+  size_t n = 0;
+  for (int y = 0; y < ref.height; ++y)
+    for (int x = 0; x < ref.width; ++x) {
+      double r = ref.at(x, y, 0) + ref.at(x, y, 1) + ref.at(x, y, 2);
+      if (!(r > 0.0)) continue;
+      for (int c = 0; c < 3; ++c) {
+        double d = double(a.at(x, y, c)) - ref.at(x, y, c);
+        se += d * d;
+        sum += ref.at(x, y, c);
+      }
+      n += 3;
+    }
+  return n && sum > 0 ? std::sqrt(se / double(n)) / (sum / double(n)) : 0.0;
+}
+
 // Console output as usual, and the runs kept for the ratio table.
 class RecordingReporter : public benchmark::ConsoleReporter {
  public:
@@ -216,12 +292,15 @@ void addBenchCommand(CLI::App& app) {
   struct Opts {
     std::string filter = ".*";
     double minTime = 0.5;
+    int viewWidth = 648;
     RunOptions run;
   };
   auto o = std::make_shared<Opts>();
   auto* cmd = app.add_subcommand("bench", "Speed benchmarks (Google Benchmark) with ratios measured in one run");
   cmd->add_option("--filter", o->filter, "Regex of benchmarks to run")->capture_default_str();
   cmd->add_option("--min-time", o->minTime, "Minimum seconds per benchmark")->capture_default_str();
+  cmd->add_option("--view-width", o->viewWidth, "Image width of the view/ benchmarks (2592 = the sensor)")
+      ->capture_default_str();
   addRunOptions(cmd, o->run);
   cmd->callback([o]() {
     ThreadLimit threads(o->run.threads);
@@ -239,6 +318,17 @@ void addBenchCommand(CLI::App& app) {
     reg("eia/paper-fig7-default-display-1spp", benchEia, true);
     reg("eia-query/bare-embree", benchEiaBareEmbree, false);
     reg("eia-query/inim-field", benchEiaField, false);
+    viewContext().width = o->viewWidth;
+    {
+      int maxSpp = 1;
+      for (int spp : viewContext().spps) {
+        benchmark::RegisterBenchmark(("view/spp:" + std::to_string(spp)).c_str(), benchView)
+            ->Arg(spp)->Iterations(1)->UseRealTime()->Unit(benchmark::kMillisecond);
+        maxSpp = std::max(maxSpp, spp);
+      }
+      benchmark::RegisterBenchmark("view/reference", benchView)
+          ->Arg(16 * maxSpp)->Iterations(1)->UseRealTime()->Unit(benchmark::kMillisecond);
+    }
     std::string filterArg = "--benchmark_filter=" + o->filter;
     std::vector<char*> args = {const_cast<char*>("inim bench"), filterArg.data()};
     int argc = int(args.size());
@@ -259,6 +349,17 @@ void addBenchCommand(CLI::App& app) {
     ratio("query/inim-field", "query/bare-embree");
     ratio("eia-query/inim-field", "eia-query/bare-embree");
     ratio("eia/paper-fig7-default-display-1spp", "eia-query/bare-embree");
+    ViewContext& v = viewContext();
+    int maxSpp = *std::max_element(v.spps.begin(), v.spps.end());
+    if (v.images.count(16 * maxSpp)) {
+      const Image& ref = v.images[16 * maxSpp];
+      std::printf("\nview (real MLA, real lens, 0 deg) at %d x %d: time and RMSE against %d spp, relative to the mean\n",
+                  ref.width, ref.height, 16 * maxSpp);
+      std::printf("  %6s %10s %12s\n", "spp", "seconds", "RMSE/mean");
+      for (int spp : v.spps)
+        if (v.images.count(spp))
+          std::printf("  %6d %10.2f %11.1f%%\n", spp, v.seconds[spp], 100.0 * relativeRmse(v.images[spp], ref));
+    }
   });
 }
 
