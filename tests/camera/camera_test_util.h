@@ -9,17 +9,16 @@
 
 #include "camera/lens_system.h"
 #include "core/error.h"
+#include "scratch_dir.h"
 
 namespace inim::test {
 
-// A scratch file for the tests of this process.
+// A scratch file for the tests of this process (the folder is removed when it ends).
 inline std::string scratchFile(const std::string& name, const std::string& text) {
-  namespace fs = std::filesystem;
-  fs::path dir = fs::temp_directory_path() / ("inim_test_camera_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  fs::path p = dir / name;
+  static ScratchDir scratch("test_camera");
+  std::string p = scratch.path(name);
   std::ofstream(p) << text;
-  return p.string();
+  return p;
 }
 
 template <class F>

@@ -12,21 +12,15 @@
 #include "display/display_info.h"
 #include "display/ei_layout.h"
 
+#include "scratch_dir.h"
+
 namespace fs = std::filesystem;
 using namespace inim;
 
 namespace {
 
-fs::path scratchDir() {
-  return fs::temp_directory_path() / ("inim_test_display_" + std::to_string(getpid()));
-}
-// Removes the scratch folder when the test program ends.
-struct ScratchCleanup {
-  ~ScratchCleanup() {
-    std::error_code ec;
-    fs::remove_all(scratchDir(), ec);
-  }
-} scratchCleanup;
+ScratchDir scratchFolder("test_display");
+fs::path scratchDir() { return scratchFolder.dir(); }
 
 constexpr double kPiD = 3.14159265358979323846;
 

@@ -16,27 +16,16 @@
 #include "rays/ray_binary.h"
 #include "rays/zemax_ray_text.h"
 
+#include "scratch_dir.h"
+
 namespace fs = std::filesystem;
 using namespace inim;
 
 namespace {
 
-fs::path scratchDir() {
-  return fs::temp_directory_path() / ("inim_test_rays_" + std::to_string(getpid()));
-}
-// Removes the scratch folder when the test program ends.
-struct ScratchCleanup {
-  ~ScratchCleanup() {
-    std::error_code ec;
-    fs::remove_all(scratchDir(), ec);
-  }
-} scratchCleanup;
+ScratchDir scratchFolder("test_rays");
 
-std::string scratchPath(const std::string& name) {
-  fs::path dir = scratchDir();
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
+std::string scratchPath(const std::string& name) { return scratchFolder.path(name); }
 
 std::string readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

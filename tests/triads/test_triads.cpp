@@ -15,27 +15,16 @@
 #include "triads/sdf.h"
 #include "triads/triads.h"
 
+#include "scratch_dir.h"
+
 namespace fs = std::filesystem;
 using namespace inim;
 
 namespace {
 
-fs::path scratchDir() {
-  return fs::temp_directory_path() / ("inim_test_triads_" + std::to_string(getpid()));
-}
-// Removes the scratch folder when the test program ends.
-struct ScratchCleanup {
-  ~ScratchCleanup() {
-    std::error_code ec;
-    fs::remove_all(scratchDir(), ec);
-  }
-} scratchCleanup;
+ScratchDir scratchFolder("test_triads");
 
-std::string scratchPath(const std::string& name) {
-  fs::path dir = scratchDir();
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
+std::string scratchPath(const std::string& name) { return scratchFolder.path(name); }
 
 std::string readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
