@@ -1,0 +1,1 @@
+// placeholder: stage studies is being written
