@@ -69,7 +69,7 @@ PixelMask displayMask(const CameraModel& camera, const DisplayArea& area) {
 void addFig11Command(CLI::App& app) {
   struct Opts {
     std::string display, scene, camera = "alvium-1800-u-500c", out, mla = "real", translate;
-    int width = 648, spp = 16, refSpp = 32, eiaSpp = 4;
+    int width = 648, spp = 16, refSpp = 8, eiaSpp = 4;
     double angle = 7.0, distanceMm = 0.0;
     RunOptions run;
   };

@@ -30,6 +30,10 @@ struct FieldSample {
   Vec3 rgb{0.0f};        // linear RGB radiance (RGB fields)
   float depth = kInfinity;  // distance along the ray to the first surface (or expected depth)
   float opacity = 0.0f;     // 1 for a hit on an opaque surface, accumulated alpha for volumes
+  // A dispersive event kept only the hero wavelength: L[0] then carries 4x the hero radiance
+  // and L[1..3] are 0 (pbrt-v4's estimator expressed with the caller's unchanged pdfs). A
+  // consumer that uses only the hero wavelength divides L[0] by 4 when this is set.
+  bool secondaryTerminated = false;
 };
 
 enum class FieldEncoding { Spectral, RGB };

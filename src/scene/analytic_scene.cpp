@@ -64,6 +64,7 @@ inline FieldSample finish(SampledSpectrum L, float t, const SampledWavelengths& 
     if (!std::isfinite(L[i])) L[i] = 0.0f;
   FieldSample out;
   out.L = L;
+  out.secondaryTerminated = lambda.secondaryTerminated() && !lambda0.secondaryTerminated();
   out.depth = t;
   out.opacity = std::isfinite(t) ? 1.0f : 0.0f;
   return out;

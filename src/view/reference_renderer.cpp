@@ -66,18 +66,27 @@ ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, 
           const uint32_t idx = uint32_t(si);
           const Vec2 pix(float(x) + SobolSequence::sample(idx, 0, sc[0]), float(y) + SobolSequence::sample(idx, 1, sc[1]));
           const Vec2 lens(SobolSequence::sample(idx, 2, sc[2]), SobolSequence::sample(idx, 3, sc[3]));
-          const SampledWavelengths wl = SampledWavelengths::sampleVisible(SobolSequence::sample(idx, 4, sc[4]));
-          Ray r;
-          const float w = camera.generateRay(pix, lens, camDisp ? wl[0] : 550.0f, r);
-          if (!(w > 0.0f)) continue;
-          const Point3d o = toField.point(Point3d(r.o));
-          const Vec3d d = toField.vector(Vec3d(r.d));
-          const double len = glm::length(d);
-          if (!(len > 0.0) || !std::isfinite(len)) continue;
-          rays.push_back({Point3(o), Vec3(d / len), 0.0f, kInfinity, pixel, uint32_t(si)});
-          if (spectral) lambdas.push_back(wl);
-          weights.push_back(w);
-          target.push_back(local);
+          const float uLambda = SobolSequence::sample(idx, 4, sc[4]);
+          // A dispersive camera lens bends each wavelength its own way: one camera ray per
+          // wavelength of the stratified packet, each carrying the packet rotated so that its
+          // own wavelength is the hero (index 0), and weighted 1/4.
+          const int nRays = camDisp ? kNumWavelengths : 1;
+          for (int k = 0; k < nRays; ++k) {
+            float uk = uLambda + float(k) / float(kNumWavelengths);
+            if (uk >= 1.0f) uk -= 1.0f;
+            const SampledWavelengths wl = SampledWavelengths::sampleVisible(uk);
+            Ray r;
+            const float w = camera.generateRay(pix, lens, camDisp ? wl[0] : 550.0f, r);
+            if (!(w > 0.0f)) continue;
+            const Point3d o = toField.point(Point3d(r.o));
+            const Vec3d d = toField.vector(Vec3d(r.d));
+            const double len = glm::length(d);
+            if (!(len > 0.0) || !std::isfinite(len)) continue;
+            rays.push_back({Point3(o), Vec3(d / len), 0.0f, kInfinity, pixel, uint32_t(si * nRays + k)});
+            if (spectral) lambdas.push_back(wl);
+            weights.push_back(w / float(nRays));
+            target.push_back(local);
+          }
         }
       }
     std::vector<FieldSample> out(rays.size());
@@ -96,13 +105,19 @@ ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, 
       Vec3d c(0.0);
       if (spectral) {
         const SampledWavelengths& wl = lambdas[i];
-        const int nw = camDisp ? 1 : kNumWavelengths;
-        for (int k = 0; k < nw; ++k) {
-          const float pdf = wl.pdf()[k];
-          if (!(pdf > 0.0f) || !std::isfinite(f.L[k])) continue;
-          c += sensor.response(wl[k]) * (double(f.L[k]) / pdf);
+        if (camDisp) {
+          // This ray's own (hero) wavelength only; a terminated packet carries 4x the hero.
+          const float pdf = wl.pdf()[0];
+          const double L0 = double(f.L[0]) / (f.secondaryTerminated ? double(kNumWavelengths) : 1.0);
+          if (pdf > 0.0f && std::isfinite(L0)) c = sensor.response(wl[0]) * (L0 / pdf);
+        } else {
+          for (int k = 0; k < kNumWavelengths; ++k) {
+            const float pdf = wl.pdf()[k];
+            if (!(pdf > 0.0f) || !std::isfinite(f.L[k])) continue;
+            c += sensor.response(wl[k]) * (double(f.L[k]) / pdf);
+          }
+          c /= double(kNumWavelengths);
         }
-        c /= double(nw);
       } else {
         c = rgbToCamera * Vec3d(f.rgb);
       }
@@ -121,7 +136,7 @@ ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, 
   r.image = std::move(img);
   r.stats.tracedRays = nCam;
   r.stats.emittingRays = nHit;
-  r.stats.raysPerSample = 1;
+  r.stats.raysPerSample = camDisp ? kNumWavelengths : 1;
   r.stats.dispersive = camDisp;
   r.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

@@ -17,9 +17,10 @@
 // the reference shows everything the scene holds.
 //
 // Spectral: each sample carries pbrt-v4's 4-wavelength packet (sampleVisible) into the field.
-// With a dispersive camera lens the camera ray is generated at the hero wavelength and only the
-// hero wavelength is kept ("terminate secondary": weight response / pdf of the hero, no 1/4),
-// which is unbiased; otherwise one ray carries the 4 wavelengths. RGB fields are converted to
+// With a dispersive camera lens each sample traces 4 camera rays, one per wavelength of the
+// stratified packet (the packet rotated so that the ray's own wavelength is the hero), each
+// keeping only its hero wavelength and weighted 1/4: unbiased, and as little colour noise as
+// one ray carrying 4 wavelengths; otherwise one ray carries the 4 wavelengths. RGB fields are converted to
 // XYZ (their colour space, through OCIO) and then to camera RGB by the inverse of the sensor's
 // fitted camera RGB -> XYZ matrix. The output is linear white-balanced camera RGB like
 // renderView's, so the same exposure logic applies (auto exposure maps each image's 99th
