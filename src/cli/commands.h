@@ -19,6 +19,7 @@ void addLensCommand(CLI::App& app);     // inim lens info FILE
 void addViewCommand(CLI::App& app);     // inim view
 void addReferenceCommand(CLI::App& app);  // inim reference
 void addFig11Command(CLI::App& app);    // inim fig11
+void addStudyCommand(CLI::App& app);    // inim study NAME
 
 // Options every command that computes shares.
 struct RunOptions {

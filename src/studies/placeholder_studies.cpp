@@ -1,1 +1,0 @@
-// placeholder: stage studies is being written

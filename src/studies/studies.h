@@ -1,0 +1,47 @@
+#pragma once
+// Validation studies (validation/<study>/): reproducible runs that measure a piece of physics
+// out of the simulation, compare it with the analytic prediction and write a report folder:
+// report.md (what, prediction, method, result table, verdict with tolerance, the command that
+// reproduces it), *.png plots and the *.csv data behind them. Every file is written to a
+// temporary and renamed into place only when the whole study succeeded (OutputSet).
+#include <string>
+#include <vector>
+
+namespace inim {
+
+struct StudyOptions {
+  std::string outDir;       // output folder (created)
+  std::string displayPath;  // display JSON; empty: the paper's prototype (defaultDisplayPath())
+};
+
+// One compared quantity of a study.
+struct StudyValue {
+  std::string name;
+  double measured = 0.0;
+  double predicted = 0.0;
+  double tolerance = 0.0;  // relative: pass when |measured - predicted| <= tolerance * |predicted|
+  bool pass = false;
+};
+
+struct StudyReport {
+  std::string study;                // e.g. "flip-onset"
+  std::vector<StudyValue> values;   // the verdict's quantities
+  std::vector<std::string> files;   // files written (final paths)
+  bool pass = false;                // every value within its tolerance
+  const StudyValue* find(const std::string& name) const;
+};
+
+// `inim study flip-onset`: own-EI fraction against viewing angle, ideal and real MLA at the
+// reconstruction gap; the 50% crossing against psi/2 = atan(P / 2g), within 10%.
+StudyReport runFlipOnset(const StudyOptions& o);
+// `inim study image-plane`: RMS bundle radius against z of a panel point traced through the
+// real centre lenslet (g = 4 mm, paraxial and full aperture); the sharpest plane against
+// H' + g f / (g - f), and the sharpest plane against the gap.
+StudyReport runImagePlane(const StudyOptions& o);
+
+// Names accepted by runStudy, in order.
+std::vector<std::string> studyNames();
+// InputError for an unknown name.
+StudyReport runStudy(const std::string& name, const StudyOptions& o);
+
+}  // namespace inim
