@@ -9,6 +9,7 @@
 
 #include "camera/lens_system.h"
 #include "core/error.h"
+#include "expect_input_error.h"
 #include "scratch_dir.h"
 
 namespace inim::test {
@@ -21,16 +22,6 @@ inline std::string scratchFile(const std::string& name, const std::string& text)
   return p;
 }
 
-template <class F>
-InputError expectInputError(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return InputError("", "", "", "");
-}
 
 // A single lens in air: front radius r1, back radius r2 (0 = flat), centre thickness t,
 // constant index n, clear aperture diameter d; the stop sits just in front (flat, t 0).

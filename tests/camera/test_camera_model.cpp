@@ -12,7 +12,6 @@
 #include "core/rng.h"
 
 using namespace inim;
-using inim::test::expectInputError;
 using inim::test::scratchFile;
 
 namespace {

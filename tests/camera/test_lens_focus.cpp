@@ -10,7 +10,6 @@
 #include "camera_test_util.h"
 
 using namespace inim;
-using inim::test::expectInputError;
 
 TEST(LensFocus, SensorShiftFollowsNewtonsEquation) {
   // x x' = f^2: an object x in front of the front focal point images x' = f^2 / x behind the

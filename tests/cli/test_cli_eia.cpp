@@ -24,6 +24,8 @@
 #include "rays/ray_binary.h"
 #include "synthesis/eia_synthesis.h"
 
+#include "scratch_dir.h"
+
 namespace fs = std::filesystem;
 using namespace inim;
 
@@ -34,22 +36,8 @@ std::string binary() {
   return INIM_BINARY;
 }
 
-fs::path scratch() {
-  static fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("inim_test_cli_eia_" + std::to_string(getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-struct Cleanup {
-  ~Cleanup() {
-    std::error_code ec;
-    fs::remove_all(fs::temp_directory_path() / ("inim_test_cli_eia_" + std::to_string(getpid())), ec);
-  }
-} cleanup;
-
-std::string path(const std::string& name) { return (scratch() / name).string(); }
+ScratchDir scratchFolder("test_cli_eia");
+std::string path(const std::string& name) { return scratchFolder.path(name); }
 
 using Result = CliResult;
 Result run(const std::string& args) { return runInimBinary(binary(), args); }

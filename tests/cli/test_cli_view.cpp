@@ -15,27 +15,15 @@
 #include "cli/run_cli.h"
 #include "core/image.h"
 
+#include "scratch_dir.h"
+
 namespace fs = std::filesystem;
 using namespace inim;
 
 namespace {
 
-fs::path scratch() {
-  static fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("inim_test_cli_view_" + std::to_string(getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-struct Cleanup {
-  ~Cleanup() {
-    std::error_code ec;
-    fs::remove_all(fs::temp_directory_path() / ("inim_test_cli_view_" + std::to_string(getpid())), ec);
-  }
-} cleanup;
-
-std::string path(const std::string& name) { return (scratch() / name).string(); }
+ScratchDir scratchFolder("test_cli_view");
+std::string path(const std::string& name) { return scratchFolder.path(name); }
 
 void writeText(const std::string& file, const std::string& text) {
   std::ofstream out(file, std::ios::binary);

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "expect_input_error.h"
 #include "core/output_file.h"
 #include "display/display.h"
 #include "display/display_info.h"
@@ -47,16 +48,6 @@ std::string prototypeWith(const std::string& name, const Json& patch) {
   return scratch(name, j.dump(2));
 }
 
-template <class F>
-InputError expectInputError(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return InputError("", "", "", "");
-}
 
 }  // namespace
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "expect_input_error.h"
 #include "core/parallel.h"
 #include "display/display.h"
 #include "rays/pinhole_rays.h"
@@ -54,16 +55,6 @@ Display smallDisplay(int K, int R, int n, EiLayoutKind layout, double gap, doubl
   return d;
 }
 
-template <class F>
-InputError expectInputError(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return InputError("", "", "", "");
-}
 
 std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> r;

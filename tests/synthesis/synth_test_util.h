@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "expect_input_error.h"
 #include "core/rng.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
@@ -150,15 +151,5 @@ SpectrumPtr makeSpectrum(F f) {
   return std::make_shared<FnSpectrum<F>>(f);
 }
 
-template <class F>
-InputError expectInputError(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return InputError("", "", "", "");
-}
 
 }  // namespace synth_test

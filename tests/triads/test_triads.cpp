@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "expect_input_error.h"
 #include "display/display.h"
 #include "rays/pinhole_rays.h"
 #include "triads/sdf.h"
@@ -57,16 +58,6 @@ std::pair<Image, std::vector<float>> randomEia(const EiLayout& L, unsigned seed)
   return {eia, driveFromEia(L, eia)};
 }
 
-template <class F>
-InputError expectInputError(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return InputError("", "", "", "");
-}
 
 int32_t i32At(const unsigned char* b, size_t off) {
   return int32_t(uint32_t(b[off]) | uint32_t(b[off + 1]) << 8 | uint32_t(b[off + 2]) << 16 | uint32_t(b[off + 3]) << 24);
