@@ -10,12 +10,14 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/scene_options.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/output_file.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "display/display.h"
+#include "field/ray_table.h"
 #include "mla/real_lens_rays.h"
 #include "mla/real_mla.h"
 #include "rays/pinhole_rays.h"
@@ -55,8 +57,9 @@ std::string num(double v) {
 
 void addEiaCommand(CLI::App& app) {
   struct Opts {
-    std::string display, scene, out, png, sdf, run, preview;
-    std::string triads, scale, rotate, translate, layout, exposure, gamut, whiteBalance, realLensRay = "centroid";
+    std::string display, scene, field, fieldColors, colorsEncoding = "srgb", out, png, sdf, run, preview;
+    PlacementArgs place;
+    std::string triads, layout, exposure, gamut, whiteBalance, realLensRay = "centroid";
     double vcpMm = kDefaultVcpMm, viewingDistanceMm = 0.0, wavelengthNm = kLambdaDNm;
     int spp = 1;
     bool aovs = false, quiet = false, realLens = false;
@@ -68,16 +71,20 @@ void addEiaCommand(CLI::App& app) {
              "panel drive values");
   cmd->add_option("--display", o->display, "Display JSON (default: optics/displays/paper-prototype.json)");
   auto* sceneOpt = cmd->add_option("--scene", o->scene, "Scene JSON (default: scenes/paper-fig7.json)");
+  auto* fieldOpt = cmd->add_option("--field", o->field, "The field to show: a scene JSON or a trained radiance field (.inimrf)");
+  auto* colorsOpt = cmd->add_option("--field-colors", o->fieldColors,
+                                    "Colours of an external field, one per query ray written by `inim rays --for-field` "
+                                    "with the same display, placement and settings (.npy or .exr: R G B [A [depth]])");
+  cmd->add_option("--field-colors-encoding", o->colorsEncoding,
+                  "srgb (NeRF outputs, default) or linear: how --field-colors values are encoded")
+      ->capture_default_str();
   cmd->add_option("--out", o->out, "Output EXR of linear drive values at the panel resolution")->required();
   auto* pngOpt = cmd->add_option("--png", o->png, "Encoded PNG (default: beside --out, same name, .png)");
   cmd->add_option("--sdf", o->sdf, "Also write the triads (3 rays per display ray) as a Zemax SDF source file");
   auto* triOpt = cmd->add_option("--triad-wavelengths", o->triads,
                                  "Triad wavelengths: panel (primary peaks, default), paper (656,566,471), "
                                  "zemax-sequential (620,525,460) or R,G,B in nm");
-  auto* scaleOpt = cmd->add_option("--scale", o->scale, "Placement scale, display mm per field unit: S or sx,sy,sz (analytic scenes are in mm: 1; "
-                                   "the paper's NeRF at 0.0075 units/mm: 133.33)");
-  auto* rotOpt = cmd->add_option("--rotate-deg", o->rotate, "Placement rotation rx,ry,rz (x, then y, then z), degrees");
-  auto* trOpt = cmd->add_option("--translate-mm", o->translate, "Placement translation x,y,z in mm (applied last)");
+  addPlacementOptions(cmd, o->place);
   cmd->add_option("--run", o->run, "Run file (JSON): placement and settings; command-line options override it");
   auto* vcpOpt = cmd->add_option("--vcp-mm", o->vcpMm,
                                  "VCP distance D_VCP in front of the MLA (the near clipping plane), mm")
@@ -109,22 +116,26 @@ void addEiaCommand(CLI::App& app) {
 
   cmd->callback([=] {
     ThreadLimit threads(o->runOpts.threads);
+    if (o->colorsEncoding != "srgb" && o->colorsEncoding != "linear")
+      throw InputError("", "--field-colors-encoding", "\"" + o->colorsEncoding + "\"", "srgb or linear");
     const auto t0 = std::chrono::steady_clock::now();
 
     // Settings: defaults < run file < command line.
     RunFile run;
     if (!o->run.empty()) run = loadRunFile(o->run);
     SynthesisSettings s;
-    if (run.placement) s.placement = *run.placement;
-    if (scaleOpt->count()) {
-      s.placement.scale = parseVec3(o->scale, "--scale", true);
-      s.placement.scaleKey = "--scale";
-      s.placement.source = "command line";
+    if (int(sceneOpt->count()) + int(fieldOpt->count()) + int(colorsOpt->count()) > 1)
+      throw InputError("", "--field", "more than one of --scene, --field, --field-colors", "one field source");
+    // The field first: a trained field carries its own default placement (run file and
+    // command line override it).
+    LoadedField lf;
+    if (!colorsOpt->count()) {
+      std::string path = sceneOpt->count()   ? o->scene
+                         : fieldOpt->count() ? o->field
+                                             : run.scene.value_or(dataPath("scenes/paper-fig7.json"));
+      lf = loadField(path, fieldOpt->count() ? "--field" : "--scene");
     }
-    if (rotOpt->count()) s.placement.rotateDeg = parseVec3(o->rotate, "--rotate-deg");
-    if (trOpt->count()) s.placement.translateMm = parseVec3(o->translate, "--translate-mm");
-    if (rotOpt->count() || trOpt->count()) s.placement.source = "command line";
-    (void)s.placement.toDisplay();  // singular placements fail here, before any work
+    s.placement = resolvePlacement(o->place, run.placement ? run.placement : lf.placement);
     s.vcpMm = vcpOpt->count() ? o->vcpMm : run.vcpMm.value_or(kDefaultVcpMm);
     if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", num(s.vcpMm), "a finite distance in mm");
     s.spp = sppOpt->count() ? o->spp : run.spp.value_or(1);
@@ -186,23 +197,28 @@ void addEiaCommand(CLI::App& app) {
     std::string triChoice = triOpt->count() ? o->triads : run.triadWavelengths.value_or("panel");
     const TriadWavelengths tw = parseTriadWavelengths(d.panel, triChoice);
 
-    // Scene.
-    std::string scenePath = sceneOpt->count() ? o->scene : run.scene.value_or(dataPath("scenes/paper-fig7.json"));
-    requireExt(scenePath, "--scene", {".json"}, "an analytic scene (.json)");
-    std::unique_ptr<AnalyticScene> scene = AnalyticScene::load(scenePath);
-
+    if (colorsOpt->count()) {
+      Point3 lo(-1e6f), hi(1e6f);  // an external field's extent is unknown
+      auto f = std::make_unique<ColorTableField>(ColorTableField::load(
+          o->fieldColors, s.spp, size_t(L.numRays()) * size_t(s.spp),
+          o->colorsEncoding == "srgb" ? ColorEncoding::SRGB : ColorEncoding::Linear, lo, hi));
+      lf.field = std::move(f);
+      lf.path = o->fieldColors;
+      lf.kind = "external field colours";
+    }
+    const Field& field = *lf.field;
     if (!o->quiet) {
       std::printf("display:     %s (%s layout, %d x %d EIs of %d x %d px, g = %s mm; panel %d x %d px)\n",
                   d.name.c_str(), layoutName(L.kind), L.eiCols, L.eiRows, L.eiW, L.eiH, num(L.gapMm).c_str(),
                   L.panelW, L.panelH);
-      std::printf("scene:       %s\n", scenePath.c_str());
+      std::printf("field:       %s (%s)\n", lf.path.c_str(), lf.kind.c_str());
       std::printf("placement:   %s; VCP at z = %s mm\n", s.placement.describe().c_str(), num(s.vcpMm).c_str());
       if (o->realLens) std::printf("rays:        %s\n", summaryText(ro, realStats).c_str());
       std::fflush(stdout);
     }
 
     const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    SynthesisResult r = synthesizeEia(L, d.panel, *scene, s);
+    SynthesisResult r = synthesizeEia(L, d.panel, field, s);
 
     // Outputs: each to a temporary, written concurrently (EXR and PNG compression are single
     // threaded), renamed into place together only when all succeeded.
@@ -215,7 +231,7 @@ void addEiaCommand(CLI::App& app) {
     if (!o->preview.empty()) {
       PreviewSettings ps;
       ps.seed = s.seed;
-      pv = renderPlacementPreview(L, *scene, s.placement.toDisplay(), s.vcpMm, ps);
+      pv = renderPlacementPreview(L, field, s.placement.toDisplay(), s.vcpMm, ps);
     }
     std::vector<std::future<void>> writes;
     writes.push_back(std::async(std::launch::async, [&] { writeImage(r.eia, exrTmp); }));

@@ -9,17 +9,20 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/scene_options.h"
 #include "core/error.h"
 #include "core/output_file.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "display/display.h"
+#include "field/ray_table.h"
 #include "mla/real_lens_rays.h"
 #include "mla/real_mla.h"
 #include "rays/pinhole_rays.h"
 #include "rays/ray_binary.h"
 #include "rays/zemax_ray_text.h"
 #include "synthesis/display_overrides.h"
+#include "synthesis/eia_synthesis.h"
 #include "synthesis/placement.h"
 
 namespace fs = std::filesystem;
@@ -28,11 +31,15 @@ namespace inim::cli {
 
 namespace {
 
-enum class RayFormat { Text, Binary };
+enum class RayFormat { Text, Binary, FieldTable };
 
-RayFormat formatOf(const std::string& path, const std::string& key) {
+RayFormat formatOf(const std::string& path, const std::string& key, bool forField = false) {
   std::string ext = fs::path(path).extension().string();
   for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (forField) {
+    if (ext == ".npy" || ext == ".exr") return RayFormat::FieldTable;
+    throw InputError("", key, "\"" + path + "\"", "with --for-field, a .npy or .exr ray table");
+  }
   if (ext == ".txt") return RayFormat::Text;
   if (ext == ".irays") return RayFormat::Binary;
   throw InputError("", key, "\"" + path + "\"", "a file ending in .txt (Zemax ray text) or .irays (inim binary rays)");
@@ -48,9 +55,11 @@ std::string num(double v) {
 
 void addRaysCommand(CLI::App& app) {
   struct Opts {
-    std::string display, out, in, layout, ei, realLensRay = "centroid";
-    double gapMm = 0.0, viewingDistanceMm = 0.0, wavelengthNm = kLambdaDNm;
-    bool macro = false, realLens = false;
+    std::string display, out, in, layout, ei, realLensRay = "centroid", runFile;
+    double gapMm = 0.0, viewingDistanceMm = 0.0, wavelengthNm = kLambdaDNm, vcpMm = kDefaultVcpMm;
+    int spp = 1;
+    bool macro = false, realLens = false, forField = false;
+    PlacementArgs place;
     RunOptions run;
   };
   auto o = std::make_shared<Opts>();
@@ -79,11 +88,30 @@ void addRaysCommand(CLI::App& app) {
   auto* inOpt = cmd->add_option("--in", o->in,
                                 "Convert this ray file (.txt: Zemax text, UTF-8 or UTF-16LE; .irays) to --out instead "
                                 "of generating rays");
+  auto* forFieldOpt = cmd->add_flag(
+      "--for-field", o->forField,
+      "Write the orthoscopic QUERY rays instead (field frame, after the inverse placement; reversed display rays "
+      "starting on the VCP) as a table for an external radiance field: --out FILE.npy (float32 N x 8: ox oy oz dx dy "
+      "dz near far) or FILE.exr; fill in one colour per row and pass it to `inim eia --field-colors`");
+  auto* runFileOpt = cmd->add_option("--run", o->runFile, "With --for-field: run file of the EIA (placement, VCP, spp)");
+  addPlacementOptions(cmd, o->place);
+  auto* vcpOpt = cmd->add_option("--vcp-mm", o->vcpMm, "With --for-field: VCP distance in front of the MLA, mm")
+                     ->capture_default_str();
+  auto* sppOpt = cmd->add_option("--spp", o->spp, "With --for-field: samples per display ray, as for inim eia")
+                     ->capture_default_str();
   addRunOptions(cmd, o->run);
   cmd->callback([=] {
     ThreadLimit threads(o->run.threads);
     const auto t0 = std::chrono::steady_clock::now();
-    const RayFormat outFormat = formatOf(o->out, "--out");
+    const RayFormat outFormat = formatOf(o->out, "--out", o->forField);
+    if (!o->forField) {
+      for (CLI::Option* opt : {runFileOpt, vcpOpt, sppOpt, o->place.scaleOpt, o->place.rotOpt, o->place.trOpt})
+        if (opt->count())
+          throw InputError("", opt->get_name(), "given", "--for-field as well (it sets up the query rays)");
+    } else if (inOpt->count() || eiOpt->count() || o->macro) {
+      throw InputError("", "--for-field", "with " + std::string(inOpt->count() ? "--in" : eiOpt->count() ? "--ei" : "--zemax-macro"),
+                       "the whole display's query rays (no --in, --ei or --zemax-macro)");
+    }
     ZemaxTextOptions text;
     if (o->macro) {
       text.utf16 = true;
@@ -144,7 +172,27 @@ void addRaysCommand(CLI::App& app) {
         bar.finish();
       }
       std::string tmp = outputs.add(o->out);
-      if (eiOpt->count() && o->realLens) {
+      if (o->forField) {
+        // The query rays exactly as `inim eia` asks them: synthesis run against a field that
+        // records its queries.
+        RunFile run;
+        if (runFileOpt->count()) run = loadRunFile(o->runFile);
+        SynthesisSettings s;
+        s.placement = resolvePlacement(o->place, run.placement);
+        s.vcpMm = vcpOpt->count() ? o->vcpMm : run.vcpMm.value_or(kDefaultVcpMm);
+        if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", num(s.vcpMm), "a finite distance in mm");
+        s.spp = sppOpt->count() ? o->spp : run.spp.value_or(1);
+        if (s.spp < 1) throw InputError("", "--spp", std::to_string(s.spp), "a whole number >= 1");
+        s.displayRays = o->realLens ? &realRays : nullptr;
+        s.progress = ProgressBar::stderrIsTerminal();
+        const Point3 lo(-1e6f), hi(1e6f);
+        RecordingField rec(size_t(L.numRays()) * size_t(s.spp), s.spp, lo, hi);
+        synthesizeEia(L, d.panel, rec, s);
+        writeRayTable(tmp, rec.table());
+        count = rec.table().rays.size();
+        what = "query rays of " + d.name + " (field frame; placement " + s.placement.describe() + ", VCP " +
+               num(s.vcpMm) + " mm, " + std::to_string(s.spp) + " spp; row = display ray x spp + sample)";
+      } else if (eiOpt->count() && o->realLens) {
         if (outFormat != RayFormat::Text)
           throw InputError("", "--ei", "\"" + o->ei + "\"", "--out FILE.txt (single-EI files are Zemax text)");
         int k = -1, l = -1;

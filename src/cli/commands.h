@@ -20,6 +20,7 @@ void addViewCommand(CLI::App& app);     // inim view
 void addReferenceCommand(CLI::App& app);  // inim reference
 void addFig11Command(CLI::App& app);    // inim fig11
 void addStudyCommand(CLI::App& app);    // inim study NAME
+void addQueryCommand(CLI::App& app);    // inim query --field F --rays R --out C
 
 // Options every command that computes shares.
 struct RunOptions {

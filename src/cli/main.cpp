@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   inim::cli::addReferenceCommand(app);
   inim::cli::addFig11Command(app);
   inim::cli::addStudyCommand(app);
+  inim::cli::addQueryCommand(app);
   inim::cli::addCompareCommand(app);
   inim::cli::addLensCommand(app);
   inim::cli::addBenchCommand(app);
