@@ -175,7 +175,7 @@ void addEiaCommand(CLI::App& app) {
     else if (run.viewingDistanceMm)
       lo.viewingDistanceMm = *run.viewingDistanceMm, lo.distanceKey = "viewing_distance_mm (" + run.file + ")";
     const EiLayout L = applyLayoutOverride(d, lo);
-    // Real-lens display rays (before the scene loads: a bad MLA or option fails early).
+    // Real-lens display rays.
     if (!o->realLens && (realRayOpt->count() || wlOpt->count()))
       throw InputError("", realRayOpt->count() ? "--real-lens-ray" : "--wavelength-nm",
                        realRayOpt->count() ? "\"" + o->realLensRay + "\"" : num(o->wavelengthNm),
@@ -208,9 +208,15 @@ void addEiaCommand(CLI::App& app) {
     }
     const Field& field = *lf.field;
     if (!o->quiet) {
-      std::printf("display:     %s (%s layout, %d x %d EIs of %d x %d px, g = %s mm; panel %d x %d px)\n",
-                  d.name.c_str(), layoutName(L.kind), L.eiCols, L.eiRows, L.eiW, L.eiH, num(L.gapMm).c_str(),
-                  L.panelW, L.panelH);
+      if (L.isHex())
+        std::printf("display:     %s (%s layout, hex lattice: %d rows of %d EIs, %d px across the flats, g = %s mm; "
+                    "panel %d x %d px)\n",
+                    d.name.c_str(), layoutName(L.kind), L.eiRows, L.eiCols, d.eiWidthPx, num(L.gapMm).c_str(),
+                    L.panelW, L.panelH);
+      else
+        std::printf("display:     %s (%s layout, %d x %d EIs of %d x %d px, g = %s mm; panel %d x %d px)\n",
+                    d.name.c_str(), layoutName(L.kind), L.eiCols, L.eiRows, L.eiW, L.eiH, num(L.gapMm).c_str(),
+                    L.panelW, L.panelH);
       std::printf("field:       %s (%s)\n", lf.path.c_str(), lf.kind.c_str());
       std::printf("placement:   %s; VCP at z = %s mm\n", s.placement.describe().c_str(), num(s.vcpMm).c_str());
       if (o->realLens) std::printf("rays:        %s\n", summaryText(ro, realStats).c_str());

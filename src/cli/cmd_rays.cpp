@@ -199,20 +199,20 @@ void addRaysCommand(CLI::App& app) {
         if (std::sscanf(o->ei.c_str(), "%d,%d", &k, &l) != 2 || k < 0 || l < 0 || k >= L.eiCols || l >= L.eiRows)
           throw InputError("", "--ei", "\"" + o->ei + "\"",
                            "K,L with 0 <= K < " + std::to_string(L.eiCols) + " and 0 <= L < " + std::to_string(L.eiRows));
-        if (text.utf16) text.header = zemaxMacroHeader(L.raysPerEi());
+        if (text.utf16) text.header = zemaxMacroHeader(L.eiRayCount(k, l));
         // The EI's block of rays (ray order: EI column, then EI row from the bottom), positions
         // relative to its physical lens centre.
-        const int64_t first = (int64_t(k) * L.eiRows + (L.eiRows - 1 - l)) * L.raysPerEi();
-        const double cx = L.lensX[size_t(k)], cy = L.lensY[size_t(l)];
+        const int64_t first = L.eiRayBegin(k, l);
+        const double cx = L.lensXAt(k, l), cy = L.lensYAt(k, l);
         writeZemaxRayText(
-            tmp, L.raysPerEi(),
+            tmp, L.eiRayCount(k, l),
             [&](int64_t i, double* v) {
               const Ray r = realRays.ray(size_t(first + i));
               v[0] = double(r.o.x) - cx, v[1] = double(r.o.y) - cy, v[2] = r.o.z;
               v[3] = r.d.x, v[4] = r.d.y, v[5] = r.d.z;
             },
             text);
-        count = uint64_t(L.raysPerEi());
+        count = uint64_t(L.eiRayCount(k, l));
         what = "EI (" + std::to_string(k) + ", " + std::to_string(l) + ") of " + d.name + ", positions relative to its lens centre";
       } else if (o->realLens) {
         ProgressBar bar("write", realRays.size());
@@ -232,9 +232,9 @@ void addRaysCommand(CLI::App& app) {
         if (std::sscanf(o->ei.c_str(), "%d,%d", &k, &l) != 2 || k < 0 || l < 0 || k >= L.eiCols || l >= L.eiRows)
           throw InputError("", "--ei", "\"" + o->ei + "\"",
                            "K,L with 0 <= K < " + std::to_string(L.eiCols) + " and 0 <= L < " + std::to_string(L.eiRows));
-        if (text.utf16) text.header = zemaxMacroHeader(L.raysPerEi());
+        if (text.utf16) text.header = zemaxMacroHeader(L.eiRayCount(k, l));
         writeZemaxEiRayText(tmp, L, k, l, text);
-        count = uint64_t(L.raysPerEi());
+        count = uint64_t(L.eiRayCount(k, l));
         what = "EI (" + std::to_string(k) + ", " + std::to_string(l) + ") of " + d.name;
       } else if (outFormat == RayFormat::Text) {
         if (text.utf16) text.header = zemaxMacroHeader(L.numRays());
@@ -252,8 +252,12 @@ void addRaysCommand(CLI::App& app) {
         what = d.name;
       }
       char buf[160];
-      std::snprintf(buf, sizeof buf, " (%s layout, %d x %d EIs of %d x %d px, g = %.6g mm)", layoutName(L.kind),
-                    L.eiCols, L.eiRows, L.eiW, L.eiH, L.gapMm);
+      if (L.isHex())
+        std::snprintf(buf, sizeof buf, " (%s layout, hex lattice, %d rows of %d EIs, %d px across the flats, g = %.6g mm)",
+                      layoutName(L.kind), L.eiRows, L.eiCols, d.eiWidthPx, L.gapMm);
+      else
+        std::snprintf(buf, sizeof buf, " (%s layout, %d x %d EIs of %d x %d px, g = %.6g mm)", layoutName(L.kind),
+                      L.eiCols, L.eiRows, L.eiW, L.eiH, L.gapMm);
       what += buf;
       if (o->realLens) {
         extra += summaryText(ro, realStats) + "\n";

@@ -27,8 +27,10 @@ GapInfo gapInfo(const Display& d, const EiLayout& L, double f, double g) {
   GapInfo r;
   const double P = d.mla.pitchMm, p = L.pixelMm;
   r.gapMm = g;
+  const double Py = L.lensRowPitchMm() > 0.0 ? L.lensRowPitchMm() : P;  // lens row pitch
   r.viewingAngleDeg = deg(2.0 * std::atan(P / (2.0 * g)));
-  r.eiViewingAngleDeg = deg(2.0 * std::atan(L.eiW * p / (2.0 * g)));
+  r.viewingAngleYDeg = L.isHex() ? deg(2.0 * std::atan(P / (std::sqrt(3.0) * g))) : r.viewingAngleDeg;
+  r.eiViewingAngleDeg = deg(2.0 * std::atan((L.isHex() ? L.eiFlatMm : L.eiW * p) / (2.0 * g)));
   if (std::abs(g - f) <= 1e-9 * f) {
     r.referencePlaneKind = "infinity";
   } else {
@@ -41,7 +43,7 @@ GapInfo gapInfo(const Display& d, const EiLayout& L, double f, double g) {
   for (int k = 0; k < L.eiCols; ++k) ex[size_t(k)] = L.eiCentreX(k);
   for (int l = 0; l < L.eiRows; ++l) ey[size_t(l)] = L.eiCentreY(l);
   r.convergenceXMm = convergence(g, P, averagePitch(ex, P));
-  r.convergenceYMm = convergence(g, P, averagePitch(ey, P));
+  r.convergenceYMm = convergence(g, Py, averagePitch(ey, Py));
   r.edgeChiefAngleXDeg = {deg(std::atan((L.lensX.front() - ex.front()) / g)),
                           deg(std::atan((L.lensX.back() - ex.back()) / g))};
   r.edgeChiefAngleYDeg = {deg(std::atan((L.lensY.front() - ey.front()) / g)),
@@ -54,17 +56,19 @@ GapInfo gapInfo(const Display& d, const EiLayout& L, double f, double g) {
 ViewingZone viewingZone(const EiLayout& L, double g, double V) {
   ViewingZone z;
   z.distanceMm = V;
-  const double hw = 0.5 * L.eiW * L.pixelMm, hh = 0.5 * L.eiH * L.pixelMm;
+  const double hw = L.isHex() ? 0.5 * L.eiFlatMm : 0.5 * L.eiW * L.pixelMm,
+               hh = L.isHex() ? L.eiFlatMm / std::sqrt(3.0) : 0.5 * L.eiH * L.pixelMm;
   auto zone = [&](double X, double e, double half) {
     // The zone seen through lens X from EI [e - half, e + half]; returns {lower, upper}.
     return std::array<double, 2>{X + (X - (e + half)) * V / g, X + (X - (e - half)) * V / g};
   };
   double loX = -1e300, hiX = 1e300, loY = -1e300, hiY = 1e300;
-  for (int k = 0; k < L.eiCols; ++k) {
-    auto a = zone(L.lensX[size_t(k)], L.eiCentreX(k), hw);
-    loX = std::max(loX, a[0]);
-    hiX = std::min(hiX, a[1]);
-  }
+  for (int k = 0; k < L.eiCols; ++k)
+    for (int l = 0; l < std::min(L.eiRows, L.isHex() ? 2 : 1); ++l) {  // hex: both row parities
+      auto a = zone(L.lensXAt(k, l), L.eiCentreXAt(k, l), hw);
+      loX = std::max(loX, a[0]);
+      hiX = std::min(hiX, a[1]);
+    }
   for (int l = 0; l < L.eiRows; ++l) {
     auto a = zone(L.lensY[size_t(l)], L.eiCentreY(l), hh);
     loY = std::max(loY, a[0]);
@@ -166,6 +170,31 @@ DisplayInfo derive(const Display& d) {
     r.nominalEiPitchXMm = r.eiW * p;
     r.nominalEiPitchYMm = r.eiH * p;
   }
+  if (L.isHex()) {  // rows are sqrt(3)/2 of the pitch along a row apart
+    r.nominalEiPitchYMm = r.nominalEiPitchXMm * std::sqrt(3.0) / 2.0;
+    HexInfo h;
+    h.lensletCount = L.numEis();
+    h.lensRowPitchMm = L.lensRowPitchMm();
+    h.lensCellAreaMm2 = L.lensCellAreaMm2();
+    h.eiFlatPx = d.eiWidthPx;
+    h.eiNominalPixels = double(d.eiWidthPx) * d.eiWidthPx * std::sqrt(3.0) / 2.0;
+    h.eiPixelsMin = INT64_MAX;
+    for (int k = 0; k < L.eiCols; ++k)
+      for (int l = 0; l < L.eiRows; ++l) {
+        const int64_t c = L.eiRayCount(k, l);
+        h.eiPixelsMin = std::min(h.eiPixelsMin, c);
+        h.eiPixelsMax = std::max(h.eiPixelsMax, c);
+      }
+    h.eiPixelsMean = double(L.numRays()) / double(std::max<int64_t>(1, L.numEis()));
+    h.eiBoxW = L.eiW;
+    h.eiBoxH = L.eiH;
+    h.eiaFill = double(L.numRays()) / (double(L.eiaW) * double(L.eiaH));
+    const AreaMm a = L.activeArea();
+    h.activeWidthMm = a.x1 - a.x0;
+    h.activeHeightMm = a.y1 - a.y0;
+    h.lensletFill = double(L.numEis()) * h.lensCellAreaMm2 / (h.activeWidthMm * h.activeHeightMm);
+    r.hex = h;
+  }
   std::vector<double> ex(size_t(L.eiCols)), ey(size_t(L.eiRows));
   for (int k = 0; k < L.eiCols; ++k) ex[size_t(k)] = L.eiCentreX(k);
   for (int l = 0; l < L.eiRows; ++l) ey[size_t(l)] = L.eiCentreY(l);
@@ -183,14 +212,14 @@ DisplayInfo derive(const Display& d) {
   r.numRays = L.numRays();
 
   r.pinholePitchXMm = averagePitch(L.pinholeX, P);
-  r.pinholePitchYMm = averagePitch(L.pinholeY, P);
+  r.pinholePitchYMm = averagePitch(L.pinholeY, L.lensRowPitchMm());
   r.generationConvergenceXMm = convergence(d.generationGapMm, r.pinholePitchXMm, r.eiPitchXMm);
   r.generationEdgeAngleXDeg = {deg(std::atan((L.pinholeX.front() - ex.front()) / d.generationGapMm)),
                                deg(std::atan((L.pinholeX.back() - ex.back()) / d.generationGapMm))};
   r.edgePinholeOffsetXMm = L.pinholeX.front() - L.lensX.front();
   r.edgePinholeOffsetYMm = L.pinholeY.front() - L.lensY.front();
   r.scaleErrorX = P / r.pinholePitchXMm - 1.0;
-  r.scaleErrorY = P / r.pinholePitchYMm - 1.0;
+  r.scaleErrorY = L.lensRowPitchMm() / r.pinholePitchYMm - 1.0;
 
   r.generation = gapInfo(d, L, r.focus.focalLengthMm, d.generationGapMm);
   r.reconstruction = gapInfo(d, L, r.focus.focalLengthMm, d.reconstructionGapMm);
@@ -251,6 +280,20 @@ Json toJson(const DisplayInfo& r) {
   } else {
     j["viewing_zone"] = nullptr;
   }
+  if (r.hex) {
+    const HexInfo& h = *r.hex;
+    j["hex"] = {{"lenslets", h.lensletCount},
+                {"lens_row_pitch_mm", h.lensRowPitchMm},
+                {"lens_cell_area_mm2", h.lensCellAreaMm2},
+                {"ei_flat_to_flat_px", h.eiFlatPx},
+                {"ei_nominal_pixels", h.eiNominalPixels},
+                {"ei_pixels_min_mean_max", {h.eiPixelsMin, h.eiPixelsMean, h.eiPixelsMax}},
+                {"ei_box_px", {h.eiBoxW, h.eiBoxH}},
+                {"eia_fill", h.eiaFill},
+                {"lenslet_array_size_mm", {h.activeWidthMm, h.activeHeightMm}},
+                {"lenslet_array_fill", h.lensletFill},
+                {"viewing_angle_deg", {r.reconstruction.viewingAngleDeg, r.reconstruction.viewingAngleYDeg}}};
+  }
   j["depth_range_criterion"] = r.depthCriterion;
   j["assumptions"] = r.assumptions;
   return j;
@@ -267,7 +310,23 @@ std::string toText(const DisplayInfo& r) {
   if (r.focus.focalFromRadiusMm)
     s += fmt("; R/(n_d-1) = %.4f mm with n_d = %.4f", *r.focus.focalFromRadiusMm, *r.focus.indexD);
   s += "\n";
-  s += fmt("EIs: %d x %d of %d x %d px, layout %s\n", r.eiCols, r.eiRows, r.eiW, r.eiH, r.layout.c_str());
+  if (r.hex) {
+    const HexInfo& h = *r.hex;
+    s += fmt("  hex lattice: %lld lenslets (%d rows of %d), row pitch P sqrt(3)/2 = %.4f mm, cell area "
+             "%.4f mm^2; lenslet array %.3f x %.3f mm (%.1f %% of its bounding box)\n",
+             (long long)h.lensletCount, r.eiRows, r.eiCols, h.lensRowPitchMm, h.lensCellAreaMm2,
+             h.activeWidthMm, h.activeHeightMm, 100.0 * h.lensletFill);
+    s += fmt("EIs: %d x %d hex EIs (rows of %d), %g px flat-to-flat, layout %s\n", r.eiCols, r.eiRows,
+             r.eiCols, h.eiFlatPx, r.layout.c_str());
+    s += fmt("  pixels per EI: %lld to %lld, mean %.2f (hexagon area %.2f px); bounding box %d x %d px; "
+             "%.1f %% of the EIA rectangle is in an EI\n",
+             (long long)h.eiPixelsMin, (long long)h.eiPixelsMax, h.eiPixelsMean, h.eiNominalPixels, h.eiBoxW,
+             h.eiBoxH, 100.0 * h.eiaFill);
+    s += fmt("  viewing angle (reconstruction gap) %.3f deg across the flats (x), %.3f deg corner to corner (y)\n",
+             r.reconstruction.viewingAngleDeg, r.reconstruction.viewingAngleYDeg);
+  } else {
+    s += fmt("EIs: %d x %d of %d x %d px, layout %s\n", r.eiCols, r.eiRows, r.eiW, r.eiH, r.layout.c_str());
+  }
   s += fmt("  EI pitch %.5f x %.5f mm (%.3f x %.3f px; nominal %.5f mm), %.4f x lens pitch\n",
            r.eiPitchXMm, r.eiPitchYMm, r.eiPitchXMm / r.pixelMm, r.eiPitchYMm / r.pixelMm,
            r.nominalEiPitchXMm, r.eiPitchXMm / r.lensPitchMm);

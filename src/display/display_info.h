@@ -16,6 +16,9 @@ namespace inim {
 struct GapInfo {
   double gapMm = 0.0;
   double viewingAngleDeg = 0.0;    // psi = 2 atan(P / (2 g))
+  // Vertical: the same for square cells; hex (pointy-top cells, 2 P / sqrt(3) tall):
+  // 2 atan(P / (sqrt(3) g)). Reported for hex only.
+  double viewingAngleYDeg = 0.0;
   double eiViewingAngleDeg = 0.0;  // 2 atan(p_EI / (2 g)): the angle one EI fills
   // L = g f / (g - f): the plane where the lenslets image the panel. nullopt when g == f
   // (at infinity); negative = virtual (behind the MLA, g < f).
@@ -49,6 +52,21 @@ struct ViewingZone {
   double commonCentreXMm = 0.0, commonCentreYMm = 0.0;
 };
 
+// Hex lattices: EIs are hexagons of pixels (display/ei_layout.h).
+struct HexInfo {
+  int64_t lensletCount = 0;          // K x L indexed lenslets
+  double lensRowPitchMm = 0.0;       // P sqrt(3) / 2
+  double lensCellAreaMm2 = 0.0;      // P^2 sqrt(3) / 2
+  double eiFlatPx = 0.0;             // EI flat-to-flat width (ei_px)
+  double eiNominalPixels = 0.0;      // one EI hexagon's area in pixels, ei_px^2 sqrt(3) / 2
+  int64_t eiPixelsMin = 0, eiPixelsMax = 0;
+  double eiPixelsMean = 0.0;         // pixels an EI owns (a Voronoi cell of the pixel grid)
+  int eiBoxW = 0, eiBoxH = 0;        // bounding box of the largest EI, px
+  double eiaFill = 0.0;              // fraction of the EIA rectangle's pixels that are in an EI
+  double lensletFill = 0.0;          // lenslet array area (K L cell areas) / its bounding box
+  double activeWidthMm = 0.0, activeHeightMm = 0.0;  // lenslet array's bounding box
+};
+
 struct DisplayInfo {
   std::string name, file, layout;
   // panel
@@ -78,6 +96,7 @@ struct DisplayInfo {
   double scaleErrorX = 0.0, scaleErrorY = 0.0;
   GapInfo generation, reconstruction;
   std::optional<ViewingZone> viewingZone;
+  std::optional<HexInfo> hex;  // hex lattices only
   std::string depthCriterion;
   std::vector<std::string> assumptions;  // panel, MLA and display, prefixed by their part
 };

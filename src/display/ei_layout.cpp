@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <memory>
 
 #include "core/error.h"
 
@@ -45,14 +47,217 @@ Axis placeAxis(int count, int n, F centrePx) {
   return a;
 }
 
+// Hex lattice: hexagonal EIs by a Voronoi assignment of the pixel grid (ei_layout.h).
+EiLayout computeHexLayout(const Display& d) {
+  EiLayout L;
+  L.kind = d.layout;
+  L.lattice = Mla::Lattice::Hex;
+  L.eiCols = d.eiCols;
+  L.eiRows = d.eiRows;
+  L.panelW = d.panel.widthPx;
+  L.panelH = d.panel.heightPx;
+  L.pixelMm = d.panel.pixelPitchMm;
+  L.gapMm = d.generationGapMm;
+  L.lensPitchMm = d.mla.pitchMm;
+  if (d.eiWidthPx != d.eiHeightPx)
+    throw InputError(d.file, "ei_px", "[" + std::to_string(d.eiWidthPx) + ", " + std::to_string(d.eiHeightPx) + "]",
+                     "one number for a hex lattice: the EI pitch along a row (flat-to-flat width) in pixels");
+  const double P = d.mla.pitchMm, p = L.pixelMm, g = d.generationGapMm;
+  const int K = L.eiCols, R = L.eiRows;
+  const double s3 = std::sqrt(3.0);
+  const double E = d.eiWidthPx * p;  // EI pitch along a row (parallel, lens-grid), mm
+  // The lattice's centre: odd rows are shifted right by half a pitch.
+  const double xc = 0.5 * (K - 1) + (R > 1 ? 0.25 : 0.0), yc = 0.5 * (R - 1);
+  L.lensX.resize(size_t(K));
+  L.lensY.resize(size_t(R));
+  for (int k = 0; k < K; ++k) L.lensX[size_t(k)] = (k - xc) * P;
+  for (int l = 0; l < R; ++l) L.lensY[size_t(l)] = (yc - l) * P * s3 / 2.0;
+  L.oddRowLensShiftMm = 0.5 * P;
+
+  // EI centres (sites) and pinholes.
+  double a = E;  // site pitch along a row
+  if (d.layout == EiLayoutKind::ToedIn) {
+    const double D = *d.viewingDistanceMm, m = 1.0 + g / D;
+    a = P * m;
+    if (a < E * (1.0 - 1e-12))
+      throw InputError(d.file, "viewing_distance_mm", num(D),
+                       "a distance whose toed-in EI pitch P (1 + g/D) = " + num(a) + " mm = " + num(a / p) +
+                           " px holds hex EIs " + std::to_string(d.eiWidthPx) +
+                           " px wide without overlap; reduce ei_px or increase the lens pitch");
+  }
+  L.eiSitePitchMm = a;
+  L.eiFlatMm = E;
+  L.eiSiteX.resize(size_t(K));
+  L.eiSiteY.resize(size_t(R));
+  for (int k = 0; k < K; ++k) L.eiSiteX[size_t(k)] = (k - xc) * a;
+  for (int l = 0; l < R; ++l) L.eiSiteY[size_t(l)] = (yc - l) * a * s3 / 2.0;
+  L.oddRowEiShiftMm = 0.5 * a;
+  if (d.layout == EiLayoutKind::Parallel) {
+    L.pinholeX = L.eiSiteX;
+    L.pinholeY = L.eiSiteY;
+    L.oddRowPinholeShiftMm = L.oddRowEiShiftMm;
+  } else {
+    L.pinholeX = L.lensX;
+    L.pinholeY = L.lensY;
+    L.oddRowPinholeShiftMm = L.oddRowLensShiftMm;
+  }
+
+  // EIA extent: every EI's hexagon (flat-to-flat E, circumradius E / sqrt(3)) fits.
+  const double hw = 0.5 * E, rc = E / s3;
+  const double maxX = (K - 1 - xc + (R > 1 ? 0.5 : 0.0)) * a + hw, maxY = yc * a * s3 / 2.0 + rc;
+  L.eiaW = int(std::ceil(2.0 * maxX / p - 1e-9));
+  L.eiaH = int(std::ceil(2.0 * maxY / p - 1e-9));
+  if (L.eiaW > L.panelW || L.eiaH > L.panelH)
+    throw InputError(d.file, "ei_count",
+                     "[" + std::to_string(K) + ", " + std::to_string(R) + "] hex EIs of " +
+                         std::to_string(d.eiWidthPx) + " px (" + layoutName(d.layout) + ") = " +
+                         std::to_string(L.eiaW) + " x " + std::to_string(L.eiaH) + " px",
+                     "an EIA that fits the panel's " + std::to_string(L.panelW) + " x " +
+                         std::to_string(L.panelH) + " px");
+  L.panelCol0 = (L.panelW - L.eiaW) / 2;
+  L.panelRow0 = (L.panelH - L.eiaH) / 2;
+
+  // Voronoi assignment: each pixel to its nearest site (of the infinite lattice), kept when
+  // that site is an indexed EI (and, toed-in, when the pixel is inside its hexagon).
+  const int W = L.eiaW, H = L.eiaH;
+  const double rowH = a * s3 / 2.0, sx0 = L.eiSiteX[0], sy0 = L.eiSiteY[0];
+  const bool clip = d.layout == EiLayoutKind::ToedIn;
+  std::vector<int32_t> owner(size_t(W) * size_t(H), -1);  // EI in ray order
+  for (int r = 0; r < H; ++r) {
+    const double y = (0.5 * H - r - 0.5) * p;
+    const int l0 = int(std::floor((sy0 - y) / rowH + 0.5));
+    for (int c = 0; c < W; ++c) {
+      const double x = (c + 0.5 - 0.5 * W) * p;
+      double best = std::numeric_limits<double>::infinity(), bdx = 0.0, bdy = 0.0;
+      int bk = 0, bl = 0;
+      for (int li = l0 - 1; li <= l0 + 1; ++li) {
+        const double sh = (li & 1) ? 0.5 * a : 0.0;
+        const int ki = int(std::floor((x - sx0 - sh) / a + 0.5));
+        const double dx = x - (sx0 + sh + ki * a), dy = y - (sy0 - li * rowH);
+        const double d2 = dx * dx + dy * dy;
+        if (d2 < best) best = d2, bk = ki, bl = li, bdx = dx, bdy = dy;
+      }
+      if (bk < 0 || bl < 0 || bk >= K || bl >= R) continue;
+      if (clip && std::max(std::abs(bdx), 0.5 * std::abs(bdx) + 0.5 * s3 * std::abs(bdy)) > hw * (1.0 + 1e-12))
+        continue;
+      owner[size_t(r) * size_t(W) + size_t(c)] = int32_t(L.eiOrder(bk, bl));
+    }
+  }
+  // Bounding boxes: per EI column and row parity (columns), per row (rows).
+  const int64_t nE = L.numEis();
+  std::vector<int> c0(size_t(nE), INT32_MAX), c1(size_t(nE), -1), r0(size_t(nE), INT32_MAX), r1(size_t(nE), -1);
+  for (int r = 0; r < H; ++r)
+    for (int c = 0; c < W; ++c) {
+      const int32_t e = owner[size_t(r) * size_t(W) + size_t(c)];
+      if (e < 0) continue;
+      c0[size_t(e)] = std::min(c0[size_t(e)], c), c1[size_t(e)] = std::max(c1[size_t(e)], c);
+      r0[size_t(e)] = std::min(r0[size_t(e)], r), r1[size_t(e)] = std::max(r1[size_t(e)], r);
+    }
+  L.eiCol0.assign(size_t(K), INT32_MAX);
+  L.eiCol0Odd.assign(size_t(K), INT32_MAX);
+  L.eiRow0.assign(size_t(R), INT32_MAX);
+  for (int k = 0; k < K; ++k)
+    for (int l = 0; l < R; ++l) {
+      const size_t e = size_t(L.eiOrder(k, l));
+      if (c1[e] < 0) continue;  // an EI without pixels (ei_px tiny)
+      int& col0 = (l & 1) ? L.eiCol0Odd[size_t(k)] : L.eiCol0[size_t(k)];
+      col0 = std::min(col0, c0[e]);
+      L.eiRow0[size_t(l)] = std::min(L.eiRow0[size_t(l)], r0[e]);
+    }
+  auto fallbackCol = [&](double x) { return std::clamp(int(std::floor(x / p + 0.5 * W)), 0, W - 1); };
+  for (int k = 0; k < K; ++k) {
+    if (L.eiCol0[size_t(k)] == INT32_MAX) L.eiCol0[size_t(k)] = fallbackCol(L.eiSiteX[size_t(k)]);
+    if (L.eiCol0Odd[size_t(k)] == INT32_MAX) L.eiCol0Odd[size_t(k)] = fallbackCol(L.eiSiteX[size_t(k)] + 0.5 * a);
+  }
+  for (int l = 0; l < R; ++l)
+    if (L.eiRow0[size_t(l)] == INT32_MAX)
+      L.eiRow0[size_t(l)] = std::clamp(int(std::floor(0.5 * H - L.eiSiteY[size_t(l)] / p)), 0, H - 1);
+  L.eiW = L.eiH = 1;
+  for (int k = 0; k < K; ++k)
+    for (int l = 0; l < R; ++l) {
+      const size_t e = size_t(L.eiOrder(k, l));
+      if (c1[e] < 0) continue;
+      L.eiW = std::max(L.eiW, c1[e] - L.eiBoxCol0(k, l) + 1);
+      L.eiH = std::max(L.eiH, r1[e] - L.eiBoxRow0(k, l) + 1);
+    }
+  // Rays in ray order: EIs (columns from the left, rows from the bottom), then in each EI's
+  // box columns from the left, rows from the bottom, the pixels the EI owns.
+  auto map = std::make_shared<EiPixelMap>();
+  map->eiRayStart.resize(size_t(nE) + 1);
+  map->pixelRay.assign(owner.size(), -1);
+  map->rayPixel.reserve(owner.size());
+  for (int64_t e = 0; e < nE; ++e) {
+    map->eiRayStart[size_t(e)] = int64_t(map->rayPixel.size());
+    int k, l;
+    L.eiFromOrder(e, k, l);
+    const int bc = L.eiBoxCol0(k, l), br = L.eiBoxRow0(k, l);
+    for (int i = 0; i < L.eiW; ++i) {
+      const int c = bc + i;
+      if (c >= W) break;
+      for (int jb = 0; jb < L.eiH; ++jb) {
+        const int r = br + L.eiH - 1 - jb;
+        if (r >= H) continue;
+        const size_t px = size_t(r) * size_t(W) + size_t(c);
+        if (owner[px] != int32_t(e)) continue;
+        map->pixelRay[px] = int32_t(map->rayPixel.size());
+        map->rayPixel.push_back(int32_t(px));
+      }
+    }
+  }
+  map->eiRayStart[size_t(nE)] = int64_t(map->rayPixel.size());
+  map->rayPixel.shrink_to_fit();
+  L.pixelMap = std::move(map);
+  return L;
+}
+
 }  // namespace
 
+bool EiLayout::eiAtPixel(int col, int row, int& k, int& l) const {
+  k = l = -1;
+  if (col < 0 || row < 0 || col >= eiaW || row >= eiaH) return false;
+  if (isHex()) {
+    const int32_t r = pixelMap->pixelRay[size_t(row) * size_t(eiaW) + size_t(col)];
+    if (r < 0) return false;
+    const auto& st = pixelMap->eiRayStart;
+    const int64_t e = int64_t(std::upper_bound(st.begin(), st.end(), int64_t(r)) - st.begin()) - 1;
+    eiFromOrder(e, k, l);
+    return true;
+  }
+  auto find = [](const std::vector<int>& starts, int n, int x) {
+    auto it = std::upper_bound(starts.begin(), starts.end(), x);
+    if (it == starts.begin()) return -1;
+    int i = int(it - starts.begin()) - 1;
+    return x - starts[size_t(i)] < n ? i : -1;
+  };
+  const int kk = find(eiCol0, eiW, col), ll = find(eiRow0, eiH, row);
+  if (kk < 0 || ll < 0) return false;
+  k = kk, l = ll;
+  return true;
+}
+
+AreaMm EiLayout::activeArea() const {
+  AreaMm a;
+  if (lensX.empty() || lensY.empty()) return a;
+  const double P = lensPitchMm;
+  if (!isHex()) {
+    a.x0 = lensX.front() - 0.5 * P;
+    a.x1 = lensX.back() + 0.5 * P;
+    a.y0 = lensY.back() - 0.5 * P;
+    a.y1 = lensY.front() + 0.5 * P;
+    return a;
+  }
+  const double shift = eiRows > 1 ? oddRowLensShiftMm : 0.0;
+  a.x0 = lensX.front() - 0.5 * P;
+  a.x1 = lensX.back() + shift + 0.5 * P;
+  a.y0 = lensY.back() - P / std::sqrt(3.0);
+  a.y1 = lensY.front() + P / std::sqrt(3.0);
+  return a;
+}
+
 EiLayout computeLayout(const Display& d) {
-  if (d.mla.lattice != Mla::Lattice::Square)
-    throw InputError(d.file, "mla.lattice", "\"hex\"",
-                     "a square lattice (hex MLAs are parsed, but EI layouts for them are not "
-                     "implemented yet)");
+  if (d.mla.lattice == Mla::Lattice::Hex) return computeHexLayout(d);
   EiLayout L;
+  L.lensPitchMm = d.mla.pitchMm;
   L.kind = d.layout;
   L.eiCols = d.eiCols;
   L.eiRows = d.eiRows;

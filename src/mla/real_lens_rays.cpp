@@ -245,14 +245,15 @@ RaySet generateRealLensRays(const EiLayout& L, const RealMla& mla, const RealLen
   std::unique_ptr<OffsetTable> table;
   if (o.tableStepMm > 0.0) {
     double maxDx = 0.0, maxDy = 0.0;
-    for (int k = 0; k < L.eiCols; ++k) {
-      const double cx = mla.lensletCentre(k, 0).x;
-      for (int i : {0, n - 1}) maxDx = std::max(maxDx, std::abs(L.pixelCentreX(L.eiCol0[size_t(k)] + i) - cx));
-    }
-    for (int l = 0; l < L.eiRows; ++l) {
-      const double cy = mla.lensletCentre(0, l).y;
-      for (int j : {0, m - 1}) maxDy = std::max(maxDy, std::abs(L.pixelCentreY(L.eiRow0[size_t(l)] + j) - cy));
-    }
+    // Box corners of every EI (all lattices): a bound on every pixel's offset from its lens.
+    for (int k = 0; k < L.eiCols; ++k)
+      for (int l = 0; l < L.eiRows; ++l) {
+        if (!L.isHex() && l > 0 && k > 0) break;  // separable: row 0 and column 0 suffice
+        const Point3d c = mla.lensletCentre(k, l);
+        const int c0 = L.eiBoxCol0(k, l), r0 = L.eiBoxRow0(k, l);
+        for (int i : {0, n - 1}) maxDx = std::max(maxDx, std::abs(L.pixelCentreX(c0 + i) - c.x));
+        for (int j : {0, m - 1}) maxDy = std::max(maxDy, std::abs(L.pixelCentreY(r0 + j) - c.y));
+      }
     table = std::make_unique<OffsetTable>(mla, o, maxDx + o.tableStepMm, maxDy + o.tableStepMm, o.tableStepMm);
   }
   std::mutex statsMutex;
@@ -267,12 +268,9 @@ RaySet generateRealLensRays(const EiLayout& L, const RealMla& mla, const RealLen
           const int k = int(e / L.eiRows);
           const int l = L.eiRows - 1 - int(e % L.eiRows);
           const Point3d c = mla.lensletCentre(k, l);
-          const int col0 = L.eiCol0[size_t(k)], row0 = L.eiRow0[size_t(l)];
-          size_t r = size_t(e) * size_t(n) * size_t(m);
-          for (int i = 0; i < n; ++i) {
-            const double px = L.pixelCentreX(col0 + i);
-            for (int jb = 0; jb < m; ++jb, ++r) {
-              const Point3d pixel(px, L.pixelCentreY(row0 + m - 1 - jb), -g);
+          L.forEachRayOfEi(k, l, [&](int64_t ri, int col, int row, int, int) {
+              const size_t r = size_t(ri);
+              const Point3d pixel(L.pixelCentreX(col), L.pixelCentreY(row), -g);
               RealLensRay rr;
               if (table && table->lookup(pixel.x - c.x, pixel.y - c.y, rr)) {
                 rr.o += Vec3d(c.x, c.y, 0.0);
@@ -291,9 +289,8 @@ RaySet generateRealLensRays(const EiLayout& L, const RealMla& mla, const RealLen
               const double dev = std::atan2(std::sqrt(x.x * x.x + x.y * x.y + x.z * x.z), cosA) * 180.0 / M_PI;
               maxDev = std::max(maxDev, dev);
               devSum += dev;
-            }
-          }
-          if (progress) progress->add(uint64_t(n) * uint64_t(m));
+          });
+          if (progress) progress->add(uint64_t(L.eiRayCount(k, l)));
         }
         std::lock_guard<std::mutex> lock(statsMutex);
         st.fallback += fallback;

@@ -241,8 +241,12 @@ RealMlaGeometry RealMla::geometryFor(const Display& d, const EiLayout& L, double
   else throw InputError(m.file, "radius_of_curvature_mm", "(missing)", "radius_of_curvature_mm or focal_length_mm");
   if (L.lensX.empty() || L.lensY.empty())
     throw InputError(d.file, "ei_count", "(no lenses)", "a layout with at least one lenslet");
-  g.originXMm = L.lensX.front();
-  g.originYMm = L.lensY.front();
+  if (L.isHex() != (m.lattice == Mla::Lattice::Hex))
+    throw InputError(d.file, "mla.lattice", latticeName(m.lattice), "the lattice the EI layout was made for");
+  // Lenslet (0, 0) is the top-left one; for hex, odd rows are shifted by +P/2 in both the
+  // layout and RealMla, so every lenslet (k, l) sits at the layout's (lensXAt, lensYAt).
+  g.originXMm = L.lensXAt(0, 0);
+  g.originYMm = L.lensYAt(0, 0);
   g.cols = int(L.lensX.size());
   g.rows = int(L.lensY.size());
   g.gapMm = gapMm;

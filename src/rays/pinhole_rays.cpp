@@ -15,7 +15,7 @@ Point3d pixelCentre(const EiLayout& L, const RayAddress& a) {
 }
 
 RayD pinholeRay(const EiLayout& L, const RayAddress& a) {
-  Point3d c(L.pinholeX[size_t(a.k)], L.pinholeY[size_t(a.l)], 0.0);
+  Point3d c(L.pinholeXAt(a.k, a.l), L.pinholeYAt(a.k, a.l), 0.0);
   Vec3d d = c - pixelCentre(L, a);
   return {c, d / std::sqrt(glm::dot(d, d))};
 }
@@ -32,6 +32,21 @@ RaySet generatePinholeRays(const EiLayout& L, ProgressBar* progress) {
         for (int64_t e = e0; e < e1; ++e) {
           int k = int(e / L.eiRows);
           int l = L.eiRows - 1 - int(e % L.eiRows);
+          if (L.isHex()) {
+            const double cx = L.pinholeXAt(k, l), cy = L.pinholeYAt(k, l);
+            L.forEachRayOfEi(k, l, [&](int64_t r, int col, int row, int, int) {
+              double vx = cx - L.pixelCentreX(col), vy = cy - L.pixelCentreY(row);
+              double inv = 1.0 / std::sqrt(vx * vx + vy * vy + g * g);
+              rays.ox[size_t(r)] = float(cx);
+              rays.oy[size_t(r)] = float(cy);
+              rays.oz[size_t(r)] = 0.0f;
+              rays.dx[size_t(r)] = float(vx * inv);
+              rays.dy[size_t(r)] = float(vy * inv);
+              rays.dz[size_t(r)] = float(g * inv);
+            });
+            if (progress) progress->add(uint64_t(L.eiRayCount(k, l)));
+            continue;
+          }
           double cx = L.pinholeX[size_t(k)], cy = L.pinholeY[size_t(l)];
           int col0 = L.eiCol0[size_t(k)], row0 = L.eiRow0[size_t(l)];
           size_t r = size_t(e) * size_t(n) * size_t(m);
@@ -59,10 +74,19 @@ std::optional<RayAddress> predictPixelForPoint(const EiLayout& L, int k, int l, 
   if (k < 0 || l < 0 || k >= L.eiCols || l >= L.eiRows) return std::nullopt;
   if (!(std::abs(p.z) > 0.0) || !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
     return std::nullopt;
-  const double cx = L.pinholeX[size_t(k)], cy = L.pinholeY[size_t(l)], g = L.gapMm;
+  const double cx = L.pinholeXAt(k, l), cy = L.pinholeYAt(k, l), g = L.gapMm;
   // The line through the pinhole c and p meets z = -g at q = c - g (p - c) / p_z.
   double qx = cx - g * (p.x - cx) / p.z;
   double qy = cy - g * (p.y - cy) / p.z;
+  if (L.isHex()) {
+    // The EIA pixel holding q, when EI (k, l) owns it.
+    const double u = qx / L.pixelMm + 0.5 * L.eiaW, v = 0.5 * L.eiaH - qy / L.pixelMm;
+    if (!(u >= 0.0 && u < L.eiaW && v >= 0.0 && v < L.eiaH)) return std::nullopt;
+    int ok, ol;
+    const int col = int(u), row = int(v);
+    if (!L.eiAtPixel(col, row, ok, ol) || ok != k || ol != l) return std::nullopt;
+    return RayAddress{k, l, col - L.eiBoxCol0(k, l), row - L.eiBoxRow0(k, l)};
+  }
   // EI-local pixel coordinates: columns from the EI's left edge, rows from its top edge.
   double left = L.pixelCentreX(L.eiCol0[size_t(k)]) - 0.5 * L.pixelMm;
   double top = L.pixelCentreY(L.eiRow0[size_t(l)]) + 0.5 * L.pixelMm;

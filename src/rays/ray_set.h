@@ -41,6 +41,9 @@ struct PixelCoord {
   bool operator==(const PixelCoord&) const = default;
 };
 
+// Hex layouts (display/ei_layout.h): (i, j) is local to EI (k, l)'s eiW x eiH box, and only
+// the pixels the EI owns are rays (rayIndex is -1 for the others); the ray order is the same
+// with the pixels an EI does not own left out.
 int64_t rayIndex(const EiLayout& L, const RayAddress& a);
 RayAddress rayAddress(const EiLayout& L, int64_t index);
 // The EIA image pixel (column from the left, row from the top) of a ray.

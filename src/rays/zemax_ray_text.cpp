@@ -136,10 +136,10 @@ void writeZemaxRayText(const std::string& path, const EiLayout& L, const ZemaxTe
 
 void writeZemaxEiRayText(const std::string& path, const EiLayout& L, int k, int l,
                          const ZemaxTextOptions& options) {
-  const int64_t first = rayIndex(L, {k, l, 0, L.eiH - 1});  // the EI's first ray in ray order
-  const double cx = L.pinholeX[size_t(k)], cy = L.pinholeY[size_t(l)];
+  const int64_t first = L.eiRayBegin(k, l);  // the EI's first ray in ray order
+  const double cx = L.pinholeXAt(k, l), cy = L.pinholeYAt(k, l);
   writeZemaxRayText(
-      path, L.raysPerEi(),
+      path, L.eiRayCount(k, l),
       [&](int64_t i, double* v) {
         RayD r = pinholeRay(L, first + i);
         v[0] = r.o.x - cx, v[1] = r.o.y - cy, v[2] = r.o.z;

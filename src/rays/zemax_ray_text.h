@@ -36,7 +36,8 @@ void writeZemaxRayText(const std::string& path, const RaySet& rays, const ZemaxT
 // All pinhole rays of a layout, computed in double precision as they are written.
 void writeZemaxRayText(const std::string& path, const EiLayout& L, const ZemaxTextOptions& options = {},
                        ProgressBar* progress = nullptr);
-// The macro's single-EI file: the eiW * eiH rays of EI (k, l), with positions relative to
+// The macro's single-EI file: the eiRayCount(k, l) rays of EI (k, l) (eiW * eiH for square
+// lattices), with positions relative to
 // the EI's pinhole (so the origins are 0, as the macro wrote them for a lenslet on axis).
 void writeZemaxEiRayText(const std::string& path, const EiLayout& L, int k, int l,
                          const ZemaxTextOptions& options = {});

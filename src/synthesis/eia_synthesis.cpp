@@ -96,7 +96,8 @@ SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field
   const std::string colorSpace = field.colorSpace();
   const int spp = s.spp;
   const int64_t N = L.numRays();
-  const int64_t perEi = L.raysPerEi();
+  // Rays per EI (hex EIs differ in size: the mean, for batching only).
+  const int64_t perEi = L.isHex() ? std::max<int64_t>(1, N / std::max<int64_t>(1, L.numEis())) : L.raysPerEi();
 
   SynthesisResult res;
   SynthesisStats& st = res.stats;
@@ -139,7 +140,7 @@ SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field
   parallelForRange(
       L.numEis(),
       [&](int64_t e0, int64_t e1) {
-        const int64_t r0 = e0 * perEi, r1 = e1 * perEi;
+        const int64_t r0 = L.rayBeginOfEiOrder(e0), r1 = L.rayBeginOfEiOrder(e1);
         std::vector<FieldRay> rays;
         std::vector<SampledWavelengths> lambdas;
         std::vector<FieldSample> out;

@@ -154,7 +154,7 @@ PreviewResult renderPlacementPreview(const EiLayout& L, const Field& field, cons
   const OrthoscopicQuery oq(fieldToDisplay, vcpMm);
   const int K = L.eiCols, R = L.eiRows;
   const double g = L.gapMm;
-  const double eiPitch = double(L.eiW) * L.pixelMm;
+  const double eiPitch = L.isHex() ? L.eiSitePitchMm : double(L.eiW) * L.pixelMm;
   const double tol = 0.5 * (K > 1 ? std::abs(L.lensX[1] - L.lensX[0]) : eiPitch);
 
   // The central ray of every lenslet: from the EI centre on the panel through the pinhole.
@@ -166,8 +166,8 @@ PreviewResult renderPlacementPreview(const EiLayout& L, const Field& field, cons
   for (int k = 0; k < K; ++k)
     for (int l = 0; l < R; ++l) {
       size_t i = size_t(k) * size_t(R) + size_t(l);
-      Point3d pin(L.pinholeX[size_t(k)], L.pinholeY[size_t(l)], 0.0);
-      Vec3d d = pin - Point3d(L.eiCentreX(k), L.eiCentreY(l), -g);
+      Point3d pin(L.pinholeXAt(k, l), L.pinholeYAt(k, l), 0.0);
+      Vec3d d = pin - Point3d(L.eiCentreXAt(k, l), L.eiCentreYAt(k, l), -g);
       d /= std::sqrt(glm::dot(d, d));
       qs[i] = oq.make(pin, d, i, 0);
       rays[i] = qs[i].ray;
@@ -271,8 +271,8 @@ PreviewResult renderPlacementPreview(const EiLayout& L, const Field& field, cons
     for (int m = 0; m < count; ++m) {
       size_t i = view == 0 ? idx(m, midRow) : idx(midCol, m);
       const auto& q = qs[i];
-      const double pin = view == 0 ? L.pinholeX[size_t(m)] : L.pinholeY[size_t(m)];
-      const double ec = view == 0 ? L.eiCentreX(m) : L.eiCentreY(m);
+      const double pin = view == 0 ? L.pinholeXAt(m, midRow) : L.pinholeYAt(midCol, m);
+      const double ec = view == 0 ? L.eiCentreXAt(m, midRow) : L.eiCentreYAt(midCol, m);
       cv.line(ph(ec), py(-g), ph(pin), py(0.0), kPanel, 1.0, 0.6f);
       Point3d end = kind[i] ? hit[i] : q.vcpPoint + (q.vcpPoint.z - lo.z) / std::max(1e-9, -q.displayDir.z) * q.displayDir;
       double s0 = view == 0 ? q.vcpPoint.x : q.vcpPoint.y, s1 = view == 0 ? end.x : end.y;
@@ -287,7 +287,7 @@ PreviewResult renderPlacementPreview(const EiLayout& L, const Field& field, cons
       bool any = false;
       for (int o = 0; o < (view == 0 ? R : K) && !any; ++o) any = cross[view == 0 ? idx(m, o) : idx(o, m)];
       if (!any) continue;
-      double c = view == 0 ? L.pinholeX[size_t(m)] : L.pinholeY[size_t(m)];
+      double c = view == 0 ? L.pinholeXAt(m, midRow) : L.pinholeYAt(midCol, m);
       cv.line(ph(c - 0.5 * eiPitch), py(0.0), ph(c + 0.5 * eiPitch), py(0.0), kCross, 6.0);
     }
     // First hits of every lenslet's central ray.

@@ -23,6 +23,10 @@ DisplayModel makeDisplayModel(const Display& d, const EiLayout& L, const Image& 
   else
     m.mla = makeRealMla(d, L, m.gapMm);
   m.area = lensletArrayArea(L, d.mla.pitchMm);
+  if (L.isHex()) {  // the hex lenslet array's bounding box (lensletArrayArea is square-only)
+    const AreaMm a = L.activeArea();
+    m.area = DisplayArea{a.x0, a.x1, a.y0, a.y1};
+  }
   return m;
 }
 

@@ -22,11 +22,30 @@ IdealLensletMla::IdealLensletMla(const EiLayout& L, double pitchMm, double focal
   if (!(g_ > 0.0) || !std::isfinite(g_)) throw InputError("", "gap_mm", num(g_), "a gap > 0 mm");
   if (K_ < 1 || L_ < 1 || L.lensX.size() != size_t(K_) || L.lensY.size() != size_t(L_))
     throw InputError("", "ei_count", std::to_string(K_) + " x " + std::to_string(L_), "at least one lenslet");
-  x0_ = L.lensX.front();
-  y0_ = L.lensY.front();
+  hex_ = L.isHex();
+  rowPitch_ = hex_ ? pitch_ * std::sqrt(3.0) / 2.0 : pitch_;
+  x0_ = L.lensXAt(0, 0);
+  y0_ = L.lensYAt(0, 0);
 }
 
 bool IdealLensletMla::cellAt(double x, double y, int& k, int& l) const {
+  if (hex_) {
+    // The nearest lens centre (of the infinite lattice), among the three nearest rows.
+    if (!std::isfinite(x) || !std::isfinite(y)) return false;
+    const int l0 = int(std::floor((y0_ - y) / rowPitch_ + 0.5));
+    double best = INFINITY;
+    int bk = 0, bl = 0;
+    for (int li = l0 - 1; li <= l0 + 1; ++li) {
+      const double sh = (li & 1) ? 0.5 : 0.0;
+      const int ki = int(std::floor((x - x0_) / pitch_ - sh + 0.5));
+      const double dx = x - (x0_ + (ki + sh) * pitch_), dy = y - (y0_ - li * rowPitch_);
+      const double d2 = dx * dx + dy * dy;
+      if (d2 < best) best = d2, bk = ki, bl = li;
+    }
+    if (bk < 0 || bl < 0 || bk >= K_ || bl >= L_) return false;
+    k = bk, l = bl;
+    return true;
+  }
   const double fk = (x - x0_) / pitch_ + 0.5, fl = (y0_ - y) / pitch_ + 0.5;
   if (!(fk >= 0.0 && fl >= 0.0 && fk < K_ && fl < L_)) return false;
   k = int(fk);
@@ -42,8 +61,8 @@ bool IdealLensletMla::traceToPanel(const Ray& ray, float, Rng&, PanelArrival& ou
   int k, l;
   if (!cellAt(x, y, k, l)) return false;
   // Viewer-side slope s' (dx/dz of the light going to the viewer = of the reversed ray).
-  const double sx = d.x / d.z + (x - lensX(k)) / f_;
-  const double sy = d.y / d.z + (y - lensY(l)) / f_;
+  const double sx = d.x / d.z + (x - lensXAt(k, l)) / f_;
+  const double sy = d.y / d.z + (y - lensYAt(k, l)) / f_;
   out.p = Point3(float(x - g_ * sx), float(y - g_ * sy), float(-g_));
   out.d = Vec3(glm::normalize(Vec3d(-sx, -sy, -1.0)));
   out.throughput = 1.0f;

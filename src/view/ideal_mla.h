@@ -1,8 +1,10 @@
 #pragma once
 // The "pinhole-MLA" comparison model (DESIGN.md section 1, step 6; issue 4 item 4): every
-// lenslet an ideal paraxial thin lens of focal length f in the plane z = 0, on a square
-// lattice at the physical lens centres (EiLayout::lensX / lensY, pitch P), each owning its
-// whole square cell (fill factor 1). No refraction, no dispersion, no crosstalk, no Fresnel.
+// lenslet an ideal paraxial thin lens of focal length f in the plane z = 0, at the physical
+// lens centres (EiLayout::lensXAt / lensYAt, pitch P) of the layout's lattice, each owning its
+// whole cell (fill factor 1): squares, or for a hex lattice pointy-top hexagons (rows
+// P sqrt(3)/2 apart, odd rows shifted by P/2, as RealMla; a point belongs to the nearest lens
+// centre). No refraction, no dispersion, no crosstalk, no Fresnel.
 //
 // The ideal-lens mapping uses slopes (tangents): a ray crossing z = 0 at x in the cell of the
 // lens centred at c, with slope s = (dx/dz, dy/dz) on the panel side, leaves toward the viewer
@@ -12,8 +14,8 @@
 // view simulation): a ray from the viewer with slope s' at x continues to the panel with
 // s = s' + (x - c) / f and lands at x - g s.
 //
-// Rays that cross z = 0 outside the lenslet array (K P x L P about the lens centres) are
-// blocked (traceToPanel returns false).
+// Rays that cross z = 0 outside the lenslet array (K P x L P about the lens centres; hex: in
+// the cell of a lens outside the K x L indexed ones) are blocked (traceToPanel returns false).
 #include <vector>
 
 #include "display/ei_layout.h"
@@ -34,11 +36,17 @@ class IdealLensletMla final : public MlaModel {
   double pitchMm() const { return pitch_; }
   // The lenslet cell holding a point of the plane z = 0 (false outside the array).
   bool cellAt(double x, double y, int& k, int& l) const;
+  // Square: lens column k / row l. Hex: lensX is row 0's (even rows'); use lensXAt.
   double lensX(int k) const { return x0_ + k * pitch_; }
-  double lensY(int l) const { return y0_ - l * pitch_; }
+  double lensY(int l) const { return y0_ - l * rowPitch_; }
+  double lensXAt(int k, int l) const { return x0_ + (k + (hex_ && (l & 1) ? 0.5 : 0.0)) * pitch_; }
+  double lensYAt(int /*k*/, int l) const { return lensY(l); }
+  bool isHex() const { return hex_; }
 
  private:
   int K_ = 0, L_ = 0;
+  bool hex_ = false;
+  double rowPitch_ = 0.0;  // P (square) or P sqrt(3)/2 (hex)
   double pitch_ = 0.0, f_ = 0.0, g_ = 0.0;
   double x0_ = 0.0, y0_ = 0.0;  // centre of lens (0, 0): left column, top row
 };

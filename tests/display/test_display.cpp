@@ -304,8 +304,10 @@ TEST(DisplayValidation, BadGapsPitchAndKeys) {
   m["pitch_mm"] = 0.0;
   EXPECT_EQ(expectInputError([&] { loadDisplay(prototypeWith("p0.json", {{"mla", m}})); }).key(), "mla.pitch_mm");
   m["pitch_mm"] = 1.0;
-  m["lattice"] = "hex";
-  EXPECT_EQ(expectInputError([&] { loadDisplay(prototypeWith("hex.json", {{"mla", m}})); }).key(), "mla.lattice");
+  m["lattice"] = "hex";  // hex lattices load (tests/display/test_hex_layout.cpp), with one ei_px
+  EXPECT_EQ(expectInputError([&] { loadDisplay(prototypeWith("hex.json", {{"mla", m}, {"ei_px", Json::array({25, 24})}})); })
+                .key(),
+            "ei_px");
   EXPECT_EQ(expectInputError([&] { loadDisplay(prototypeWith("nopanel.json", {{"panel", "no-such-panel"}})); }).key(),
             "panel");
 }
