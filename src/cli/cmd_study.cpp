@@ -16,7 +16,7 @@ void addStudyCommand(CLI::App& app) {
   };
   auto o = std::make_shared<Opts>();
   auto* cmd = app.add_subcommand("study", "Run a validation study: report.md, plots and CSV data in --out");
-  cmd->add_option("name", o->name, "Study: flip-onset | image-plane")
+  cmd->add_option("name", o->name, "Study: flip-onset | image-plane | depth-sharpness | braiding | telecentric")
       ->required()
       ->check(CLI::IsMember(studyNames()));
   cmd->add_option("--out", o->study.outDir, "Output folder")->required();

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "display/display.h"
 #include "studies/study_common.h"
 
 namespace inim {
@@ -14,11 +15,20 @@ const StudyValue* StudyReport::find(const std::string& name) const {
   return nullptr;
 }
 
-std::vector<std::string> studyNames() { return {"flip-onset", "image-plane"}; }
+std::vector<std::string> studyNames() { return {"flip-onset", "image-plane", "depth-sharpness", "braiding", "telecentric"}; }
 
 StudyReport runStudy(const std::string& name, const StudyOptions& o) {
+  // The studies sample lenslet cells and EIs as squares (the paper's MLA).
+  if (!o.displayPath.empty()) {
+    const Display d = loadDisplay(o.displayPath);
+    if (d.mla.lattice != Mla::Lattice::Square)
+      throw InputError(o.displayPath, "mla.lattice", "\"hex\"", "a square-lattice display (the studies sample square cells)");
+  }
   if (name == "flip-onset") return runFlipOnset(o);
   if (name == "image-plane") return runImagePlane(o);
+  if (name == "depth-sharpness") return runDepthSharpness(o);
+  if (name == "braiding") return runBraiding(o);
+  if (name == "telecentric") return runTelecentric(o);
   std::string names;
   for (const auto& n : studyNames()) names += (names.empty() ? "" : ", ") + n;
   throw InputError("", "study", name, "one of " + names);

@@ -12,6 +12,7 @@ namespace inim {
 struct StudyOptions {
   std::string outDir;       // output folder (created)
   std::string displayPath;  // display JSON; empty: the paper's prototype (defaultDisplayPath())
+  bool quick = false;       // fewer depths, smaller images, fewer samples (the CI tests)
 };
 
 // One compared quantity of a study.
@@ -38,6 +39,21 @@ StudyReport runFlipOnset(const StudyOptions& o);
 // real centre lenslet (g = 4 mm, paraxial and full aperture); the sharpest plane against
 // H' + g f / (g - f), and the sharpest plane against the gap.
 StudyReport runImagePlane(const StudyOptions& o);
+
+// `inim study depth-sharpness`: a slanted edge at a sweep of depths, EIA synthesised at
+// g = 4 mm, seen through the real and ideal MLA by a thin-lens camera focused on the target;
+// the real MLA's depth of the largest edge MTF50 (and the centre of the band within 70% of it)
+// against H' + g f / (g - f), within 25%.
+StudyReport runDepthSharpness(const StudyOptions& o);
+// `inim study braiding`: a point's EIA synthesised at several depths, seen by a pinhole eye
+// scanned across the display through the ideal and the real MLA; per lenslet, the apparent
+// position of the point against the eye position (facet lines): the facet-to-facet jump
+// against P (1 - L/z) (D - z) / (D - L), zero at the reference image plane L.
+StudyReport runBraiding(const StudyOptions& o);
+// `inim study telecentric`: the reconstructed width of a bar seen from D = 350 mm, parallel
+// against toed-in layout; parallel against the EI/lens pitch prediction, toed-in against the
+// true width.
+StudyReport runTelecentric(const StudyOptions& o);
 
 // Names accepted by runStudy, in order.
 std::vector<std::string> studyNames();

@@ -1,6 +1,7 @@
 // The validation studies run end to end into a temporary folder: every file is written and the
 // verdict values are those the physics tests assert (tests/view/test_flip_onset.cpp,
-// tests/mla/test_reference_image_plane.cpp).
+// tests/mla/test_reference_image_plane.cpp); the pipeline studies (depth-sharpness, braiding,
+// telecentric) run in their quick form.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -85,7 +86,102 @@ TEST(Studies, ImagePlaneMatchesThickLensPrediction) {
   if (!std::getenv("INIM_STUDIES_KEEP")) fs::remove_all(dir);
 }
 
+// The pipeline studies run in their quick form (fewer depths, smaller images, fewer samples):
+// the verdict values are the same quantities with the same tolerances as the full run.
+TEST(Studies, DepthSharpnessPeaksNearTheReferenceImagePlane) {
+  const fs::path dir = tempDir("depth");
+  StudyOptions o{dir.string(), ""};
+  o.quick = true;
+  const StudyReport r = runDepthSharpness(o);
+  ASSERT_EQ(r.values.size(), 2u);
+  EXPECT_NEAR(r.values[0].predicted, 19.35, 0.02);  // H' + g f / (g - f), real lenslets (image-plane study)
+  for (const auto& v : r.values) {
+    EXPECT_NEAR(v.measured, v.predicted, v.tolerance * v.predicted) << v.name;
+    EXPECT_TRUE(v.pass) << v.name << " measured " << v.measured << " predicted " << v.predicted;
+  }
+  EXPECT_TRUE(r.pass);
+  ASSERT_EQ(r.files.size(), 4u);
+  expectFiles(r);
+  const std::string md = readText(dir / "report.md");
+  EXPECT_NE(md.find("PASS"), std::string::npos);
+  EXPECT_NE(md.find("inim study depth-sharpness --out"), std::string::npos);
+  if (!std::getenv("INIM_STUDIES_KEEP")) fs::remove_all(dir);
+}
+
+TEST(Studies, BraidingFollowsTheParaxialFacetJump) {
+  const fs::path dir = tempDir("braid");
+  StudyOptions o{dir.string(), ""};
+  o.quick = true;
+  const StudyReport r = runBraiding(o);
+  ASSERT_GE(r.values.size(), 4u);
+  for (const auto& v : r.values) {
+    EXPECT_NEAR(v.measured, v.predicted, v.tolerance * std::abs(v.predicted)) << v.name;
+    EXPECT_TRUE(v.pass) << v.name << " measured " << v.measured << " predicted " << v.predicted;
+  }
+  // Signs: the facets jump backwards between the MLA and L, forwards beyond L, and by more than P
+  // behind the MLA.
+  for (const char* mla : {"ideal MLA", "real MLA"}) {
+    const StudyValue* far = r.find(std::string("facet jump at z = 40 mm, ") + mla);
+    const StudyValue* near = r.find(std::string("facet jump at z = 10 mm, ") + mla);
+    const StudyValue* virt = r.find(std::string("facet jump at z = -20 mm (virtual), ") + mla);
+    ASSERT_TRUE(far && near && virt) << mla;
+    EXPECT_GT(far->measured, 0.0) << mla;
+    EXPECT_LT(near->measured, 0.0) << mla;
+    EXPECT_GT(virt->measured, 1.0) << mla;  // more than P behind the MLA (inverted facets)
+  }
+  // The ideal lenslets' facets line up at L within 10%.
+  const StudyValue* zero = r.find("depth of zero braiding, ideal MLA");
+  ASSERT_TRUE(zero);
+  EXPECT_NEAR(zero->measured, 18.857, 0.1 * 18.857);
+  EXPECT_TRUE(r.pass);
+  ASSERT_EQ(r.files.size(), 4u);
+  expectFiles(r);
+  if (!std::getenv("INIM_STUDIES_KEEP")) fs::remove_all(dir);
+}
+
+TEST(Studies, TelecentricParallelMagnifiesToedInDoesNot) {
+  const fs::path dir = tempDir("tele");
+  StudyOptions o{dir.string(), ""};
+  o.quick = true;
+  const StudyReport r = runTelecentric(o);
+  ASSERT_EQ(r.values.size(), 6u);  // 3 depths x 2 layouts
+  for (const auto& v : r.values) {
+    EXPECT_NEAR(v.measured, v.predicted, v.tolerance * v.predicted) << v.name;
+    EXPECT_TRUE(v.pass) << v.name << " measured " << v.measured << " predicted " << v.predicted;
+  }
+  // At L the parallel layout's error (about +8%) is far beyond the resolution there.
+  const StudyValue* par = r.find("width, parallel, z = 19 mm");
+  const StudyValue* toe = r.find("width, toed-in, z = 19 mm");
+  ASSERT_TRUE(par && toe);
+  EXPECT_GT(par->measured, toe->measured + 1.0);
+  EXPECT_TRUE(r.pass);
+  ASSERT_EQ(r.files.size(), 3u);
+  expectFiles(r);
+  if (!std::getenv("INIM_STUDIES_KEEP")) fs::remove_all(dir);
+}
+
 TEST(Studies, UnknownNameIsInputError) {
   EXPECT_THROW(runStudy("no-such-study", {"/nonexistent", ""}), InputError);
-  EXPECT_EQ(studyNames().size(), 2u);
+  EXPECT_EQ(studyNames().size(), 5u);
+}
+
+// Not a check: INIM_STUDIES_FULL=DIR runs the studies named in INIM_STUDIES_FULL_NAMES
+// (comma-separated; default all) in their full form into DIR/<name>, as `inim study` does
+// (to regenerate validation/ without the command-line tool). Skipped otherwise.
+TEST(Studies, FullRunsOnRequest) {
+  const char* dirEnv = std::getenv("INIM_STUDIES_FULL");
+  if (!dirEnv) GTEST_SKIP() << "set INIM_STUDIES_FULL=DIR to run the full studies";
+  std::vector<std::string> names = studyNames();
+  if (const char* n = std::getenv("INIM_STUDIES_FULL_NAMES")) {
+    names.clear();
+    std::stringstream ss(n);
+    for (std::string s; std::getline(ss, s, ',');) names.push_back(s);
+  }
+  for (const auto& n : names) {
+    const StudyReport r = runStudy(n, {(fs::path(dirEnv) / n).string(), ""});
+    std::printf("[ study    ] %s: %s\n", n.c_str(), r.pass ? "PASS" : "FAIL");
+    for (const auto& v : r.values)
+      std::printf("[ value    ] %s: measured %.4f predicted %.4f (tolerance %.0f%%)%s\n", v.name.c_str(), v.measured,
+                  v.predicted, 100.0 * v.tolerance, v.pass ? "" : "  FAIL");
+  }
 }
