@@ -14,6 +14,7 @@
 #include "analysis/plot.h"
 #include "camera/camera_config.h"
 #include "cli/commands.h"
+#include "cli/scene_options.h"
 #include "core/error.h"
 #include "core/output_file.h"
 #include "core/parallel.h"
@@ -68,7 +69,8 @@ PixelMask displayMask(const CameraModel& camera, const DisplayArea& area) {
 
 void addFig11Command(CLI::App& app) {
   struct Opts {
-    std::string display, scene, camera = "alvium-1800-u-500c", out, mla = "real", translate;
+    std::string display, scene, camera = "alvium-1800-u-500c", out, mla = "real";
+    PlacementArgs place;
     int width = 648, spp = 16, refSpp = 8, eiaSpp = 4;
     double angle = 7.0, distanceMm = 0.0;
     RunOptions run;
@@ -78,7 +80,8 @@ void addFig11Command(CLI::App& app) {
       "fig11", "Reproduce the paper's Fig. 11: EIA, five reconstructed and five reference views, contact sheet, metrics");
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->add_option("--display", o->display, "Display JSON (default: the paper's prototype)");
-  cmd->add_option("--scene", o->scene, "Scene JSON (default: scenes/paper-fig7.json)");
+  cmd->add_option("--scene,--field", o->scene,
+                  "The field: a scene JSON or a trained radiance field (.inimrf) (default: scenes/paper-fig7.json)");
   cmd->add_option("--camera", o->camera, "Camera description (name in optics/cameras or a file)")->capture_default_str();
   cmd->add_option("--mla", o->mla, "MLA model for the reconstruction: real (refracting) or ideal (thin lenslets)")
       ->check(CLI::IsMember({"real", "ideal"}))
@@ -90,7 +93,7 @@ void addFig11Command(CLI::App& app) {
   cmd->add_option("--eia-spp", o->eiaSpp, "Field samples per display ray for the EIA")->capture_default_str();
   cmd->add_option("--angle", o->angle, "Viewing angle of the four side views, degrees")->capture_default_str();
   cmd->add_option("--distance-mm", o->distanceMm, "Camera distance (default: the camera description's)");
-  cmd->add_option("--translate-mm", o->translate, "Scene placement translation x,y,z, mm");
+  addPlacementOptions(cmd, o->place);
   addRunOptions(cmd, o->run);
 
   cmd->callback([o]() {
@@ -105,10 +108,10 @@ void addFig11Command(CLI::App& app) {
     Display display = loadDisplay(o->display.empty() ? defaultDisplayPath() : o->display);
     EiLayout layout = computeLayout(display);
     std::string scenePath = o->scene.empty() ? defaultScenePath() : o->scene;
-    auto scene = AnalyticScene::load(scenePath);
+    LoadedField lf = loadField(scenePath, "--field");
+    const Field& scene = *lf.field;
     CameraDescription desc = loadCameraDescription(o->camera);
-    Placement placement;
-    if (!o->translate.empty()) placement.translateMm = Vec3d(parseVec3Option(o->translate, "--translate-mm"));
+    const Placement placement = resolvePlacement(o->place, lf.placement);
     const Transform fieldToDisplay = placement.toDisplay();
     const double distance = o->distanceMm > 0.0 ? o->distanceMm : desc.distanceMm;
 
@@ -118,7 +121,7 @@ void addFig11Command(CLI::App& app) {
     ss.spp = o->eiaSpp;
     ss.seed = o->run.seed;
     ss.autoExposure = true;
-    SynthesisResult eia = synthesizeEia(layout, display.panel, *scene, ss);
+    SynthesisResult eia = synthesizeEia(layout, display.panel, scene, ss);
     std::printf("EIA:         %d x %d px from %s, %.2f s\n", eia.eia.width, eia.eia.height, scenePath.c_str(),
                 eia.stats.seconds);
     DisplayModel dm = makeDisplayModel(display, layout, eia.eia, "(synthesized EIA)",
@@ -152,13 +155,18 @@ void addFig11Command(CLI::App& app) {
       ReferenceSettings rs;
       rs.spp = o->refSpp;
       rs.seed = o->run.seed;
-      ViewResult ref = renderReference(*scene, fieldToDisplay, *camera, desc.sensor, rs);
+      ViewResult ref = renderReference(scene, fieldToDisplay, *camera, desc.sensor, rs);
 
-      // Each image exposed on its own (panel cd/m^2 and scene radiance have different units);
-      // metrics compare what a person would see: the exposed sRGB images.
+      // One exposure for both, in the same units: the EIA maps field luminance Y to drive
+      // exposureUsed x Y, which the panel shows at exposureUsed x Y x peak luminance (cd/m^2), the
+      // unit of the reconstruction. So the reference, scaled by that, is what an ideal display
+      // would show; the exposure that suits the reference then applies to both, and what the
+      // optics lose or add (Fresnel, black matrix, crosstalk) stays visible in the metrics.
+      const Image refCdM2 = scaledImage(ref.image, eia.stats.exposureUsed * display.panel.peakLuminanceCdM2);
       Exposure autoExposure;
-      Image recExposed = scaledImage(rec.image, exposureFactor(rec.image, desc.sensor, autoExposure));
-      Image refExposed = scaledImage(ref.image, exposureFactor(ref.image, desc.sensor, autoExposure));
+      const double k = exposureFactor(refCdM2, desc.sensor, autoExposure);
+      Image recExposed = scaledImage(rec.image, k);
+      Image refExposed = scaledImage(refCdM2, k);
       Image recSrgb = cameraRgbToSrgb(recExposed, desc.sensor);
       Image refSrgb = cameraRgbToSrgb(refExposed, desc.sensor);
       const std::string stem = p.name;
