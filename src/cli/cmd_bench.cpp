@@ -8,9 +8,11 @@
 //   eia/paper-fig7         full orthoscopic EIA of the default display (6,215,625 rays, 1 spp)
 //   eia-query/bare-embree  rtcIntersect1 over that EIA's 6.2M query rays
 //   eia-query/inim-field   the same query rays through Field::query
-//   view/spp:N             `inim view` of the default EIA (real MLA, real lens, 0 deg) at
-//                          --view-width, N spp; the table after the run gives each one's RMSE
-//                          against view/reference (16x the largest N spp), relative to its mean
+//   view/E/spp:N           `inim view` of the default EIA (real MLA, real lens, 0 deg) at
+//                          --view-width, N spp (--view-spp), panel estimator E = point or
+//                          footprint (--view-estimators); the table after the run gives each
+//                          one's RMSE against view/reference (the footprint estimator at
+//                          --view-ref-spp, default 16x the largest N), relative to its mean
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 #include <embree3/rtcore.h>
@@ -207,11 +209,14 @@ void benchEiaField(benchmark::State& state) {
 struct ViewContext {
   int width = 648;
   std::vector<int> spps = {1, 4, 16};
+  std::vector<PanelEstimator> estimators = {PanelEstimator::PointSample, PanelEstimator::Footprint};
+  int refSpp = 256;
   std::unique_ptr<DisplayModel> dm;
   CameraDescription desc;
   std::unique_ptr<CameraModel> camera;
-  std::map<int, Image> images;    // by spp
-  std::map<int, double> seconds;  // by spp
+  std::map<std::pair<int, int>, Image> images;    // by (estimator, spp); estimator -1: the reference
+  std::map<std::pair<int, int>, double> seconds;
+  std::map<std::pair<int, int>, double> rssMiB;   // peak RSS of the process after the run
 };
 ViewContext& viewContext() {
   static ViewContext v;
@@ -238,16 +243,21 @@ ViewContext& builtViewContext() {
   return v;
 }
 
+// Args: spp, estimator (int(PanelEstimator); -1: the reference, footprint at refSpp).
 void benchView(benchmark::State& state) {
   ViewContext& v = builtViewContext();
   ViewSettings s;
   s.spp = int(state.range(0));
+  const int est = int(state.range(1));
+  s.panelEstimator = est < 0 ? PanelEstimator::Footprint : PanelEstimator(est);
   s.progress = false;
+  const std::pair<int, int> key(est, s.spp);
   for (auto _ : state) {
     ViewResult r = renderView(*v.camera, v.desc.sensor, *v.dm->mla, *v.dm->panel, v.dm->area, s);
-    v.images[s.spp] = std::move(r.image);
-    v.seconds[s.spp] = r.stats.seconds;
+    v.images[key] = std::move(r.image);
+    v.seconds[key] = r.stats.seconds;
   }
+  v.rssMiB[key] = peakRssMiB();
   state.counters["peak_RSS_MiB"] = peakRssMiB();
 }
 
@@ -293,6 +303,9 @@ void addBenchCommand(CLI::App& app) {
     std::string filter = ".*";
     double minTime = 0.5;
     int viewWidth = 648;
+    std::vector<int> viewSpp = {1, 4, 16};
+    std::vector<std::string> viewEstimators = {"point", "footprint"};
+    int viewRefSpp = 0;
     RunOptions run;
   };
   auto o = std::make_shared<Opts>();
@@ -301,6 +314,13 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--min-time", o->minTime, "Minimum seconds per benchmark")->capture_default_str();
   cmd->add_option("--view-width", o->viewWidth, "Image width of the view/ benchmarks (2592 = the sensor)")
       ->capture_default_str();
+  cmd->add_option("--view-spp", o->viewSpp, "Samples per pixel of the view/ benchmarks")
+      ->delimiter(',')->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--view-estimators", o->viewEstimators, "Panel estimators of the view/ benchmarks")
+      ->delimiter(',')->check(CLI::IsMember({"point", "footprint"}))->capture_default_str();
+  cmd->add_option("--view-ref-spp", o->viewRefSpp,
+                  "spp of view/reference (footprint estimator); 0: 16x the largest --view-spp")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
   addRunOptions(cmd, o->run);
   cmd->callback([o]() {
     ThreadLimit threads(o->run.threads);
@@ -320,14 +340,21 @@ void addBenchCommand(CLI::App& app) {
     reg("eia-query/inim-field", benchEiaField, false);
     viewContext().width = o->viewWidth;
     {
-      int maxSpp = 1;
-      for (int spp : viewContext().spps) {
-        benchmark::RegisterBenchmark(("view/spp:" + std::to_string(spp)).c_str(), benchView)
-            ->Arg(spp)->Iterations(1)->UseRealTime()->Unit(benchmark::kMillisecond);
-        maxSpp = std::max(maxSpp, spp);
-      }
+      ViewContext& v = viewContext();
+      v.spps = o->viewSpp;
+      v.estimators.clear();
+      for (const auto& e : o->viewEstimators)
+        v.estimators.push_back(e == "point" ? PanelEstimator::PointSample : PanelEstimator::Footprint);
+      const int maxSpp = *std::max_element(v.spps.begin(), v.spps.end());
+      v.refSpp = o->viewRefSpp > 0 ? o->viewRefSpp : 16 * maxSpp;
+      for (PanelEstimator e : v.estimators)
+        for (int spp : v.spps)
+          benchmark::RegisterBenchmark(
+              ("view/" + std::string(panelEstimatorName(e)) + "/spp:" + std::to_string(spp)).c_str(), benchView)
+              ->Args({spp, int(e)})->Iterations(1)->UseRealTime()
+              ->Unit(benchmark::kMillisecond);
       benchmark::RegisterBenchmark("view/reference", benchView)
-          ->Arg(16 * maxSpp)->Iterations(1)->UseRealTime()->Unit(benchmark::kMillisecond);
+          ->Args({v.refSpp, -1})->Iterations(1)->UseRealTime()->Unit(benchmark::kMillisecond);
     }
     std::string filterArg = "--benchmark_filter=" + o->filter;
     std::vector<char*> args = {const_cast<char*>("inim bench"), filterArg.data()};
@@ -350,15 +377,19 @@ void addBenchCommand(CLI::App& app) {
     ratio("eia-query/inim-field", "eia-query/bare-embree");
     ratio("eia/paper-fig7-default-display-1spp", "eia-query/bare-embree");
     ViewContext& v = viewContext();
-    int maxSpp = *std::max_element(v.spps.begin(), v.spps.end());
-    if (v.images.count(16 * maxSpp)) {
-      const Image& ref = v.images[16 * maxSpp];
-      std::printf("\nview (real MLA, real lens, 0 deg) at %d x %d: time and RMSE against %d spp, relative to the mean\n",
-                  ref.width, ref.height, 16 * maxSpp);
-      std::printf("  %6s %10s %12s\n", "spp", "seconds", "RMSE/mean");
-      for (int spp : v.spps)
-        if (v.images.count(spp))
-          std::printf("  %6d %10.2f %11.1f%%\n", spp, v.seconds[spp], 100.0 * relativeRmse(v.images[spp], ref));
+    const std::pair<int, int> refKey(-1, v.refSpp);
+    if (v.images.count(refKey)) {
+      const Image& ref = v.images[refKey];
+      std::printf("\nview (real MLA, real lens, 0 deg) at %d x %d: time and RMSE against the footprint estimator at "
+                  "%d spp (%.1f s), relative to the mean\n", ref.width, ref.height, v.refSpp, v.seconds[refKey]);
+      std::printf("  %-10s %6s %10s %12s %14s\n", "estimator", "spp", "seconds", "RMSE/mean", "peak RSS MiB");
+      for (PanelEstimator e : v.estimators)
+        for (int spp : v.spps) {
+          const std::pair<int, int> key(int(e), spp);
+          if (v.images.count(key))
+            std::printf("  %-10s %6d %10.2f %11.2f%% %14.0f\n", panelEstimatorName(e), spp, v.seconds[key],
+                        100.0 * relativeRmse(v.images[key], ref), v.rssMiB[key]);
+        }
     }
   });
 }

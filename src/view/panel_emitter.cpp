@@ -109,6 +109,17 @@ PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& i
       cx /= 3.0 * a2;
       cy /= 3.0 * a2;
     }
+    {
+      // Axis-aligned rectangle: 4 corners, every edge horizontal or vertical, area = bbox area.
+      bool axis = sp.polygon.size() == 4;
+      for (size_t i = 0; axis && i < 4; ++i) {
+        const auto& q = sp.polygon[i];
+        const auto& r = sp.polygon[(i + 1) % 4];
+        axis = q[0] == r[0] || q[1] == r[1];
+      }
+      p.rect = axis && std::abs(0.5 * std::abs(a2) - double(p.u1 - p.u0) * double(p.v1 - p.v0)) <=
+                           1e-9 * std::max(1.0, 0.5 * std::abs(a2));
+    }
     p.pixU = std::clamp(int(std::floor(cx)), 0, tileW_ - 1);
     p.pixV = std::clamp(int(std::floor(cy)), 0, tileH_ - 1);
     polys_.push_back(std::move(p));
@@ -155,13 +166,13 @@ float PanelEmitter::angular(float cosTheta) const {
   return a;
 }
 
-PanelEmission PanelEmitter::emit(const Point3& p, const Vec3& dIn, float lambdaNm) const {
+bool PanelEmitter::emissionPointPx(const Point3& p, const Vec3& dIn, float lambdaNm, Vec2d& uv, float& factor) const {
   const Vec3 d = glm::normalize(dIn);
-  if (!(d.z < 0.0f)) return {};
+  if (!(d.z < 0.0f)) return false;
   if (!glassIor_) {
-    PanelEmission e = lookup(p.x, p.y);
-    if (e.channel >= 0) e.weight *= angular(-d.z);
-    return e;
+    uv = toPanelPx(p.x, p.y);
+    factor = angular(-d.z);
+    return true;
   }
   // Back along the ray to the plate's top, refract into the glass, go down to z = -g.
   const double zTop = -gap_ + glassT_;
@@ -169,13 +180,110 @@ PanelEmission PanelEmitter::emit(const Point3& p, const Vec3& dIn, float lambdaN
   const Point3d top = Point3d(p) + dd * ((zTop - double(p.z)) / dd.z);
   const double n = glassIor_->n(lambdaNm);
   Vec3d dg;
-  if (!snellRefract(dd, Vec3d(0, 0, 1), 1.0, n, dg)) return {};  // cannot happen from air
+  if (!snellRefract(dd, Vec3d(0, 0, 1), 1.0, n, dg)) return false;  // cannot happen from air
   const Point3d q = top + dg * (-glassT_ / dg.z);
-  PanelEmission e = lookup(q.x, q.y);
-  if (e.channel < 0 || e.weight == 0.0f) return e;
+  uv = toPanelPx(q.x, q.y);
   const double t = fresnelTransmittance(-dd.z, 1.0, n) / fresnelTransmittance(1.0, 1.0, n);
-  e.weight *= float(t) * angular(float(-dg.z));
+  factor = float(t) * angular(float(-dg.z));
+  return true;
+}
+
+PanelEmission PanelEmitter::emit(const Point3& p, const Vec3& d, float lambdaNm) const {
+  Vec2d uv;
+  float factor = 0.0f;
+  if (!emissionPointPx(p, d, lambdaNm, uv, factor)) return {};
+  PanelEmission e = lookupPx(uv.x, uv.y);
+  if (e.channel < 0 || e.weight == 0.0f) return e;
+  e.weight *= factor;
   return e;
+}
+
+double PanelEmitter::polyBoxArea(const Poly& p, double u0, double v0, double u1, double v1) const {
+  // Sutherland-Hodgman against the four half-planes of the box (box in tile coordinates). The
+  // subject may be concave: the clipped polygon can then have degenerate edges, but its signed
+  // area is still the area of the intersection.
+  constexpr size_t kMax = 64;
+  std::array<double, 2> bufA[kMax], bufB[kMax];
+  size_t n = p.pts.size();
+  if (n < 3 || n + 8 > kMax / 2) {
+    // Too many vertices for the fixed buffers: 8 x 8 midpoint sub-samples of the box.
+    int in = 0;
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 8; ++i)
+        if (insidePolygon(p.pts, float(u0 + (i + 0.5) / 8 * (u1 - u0)), float(v0 + (j + 0.5) / 8 * (v1 - v0)))) ++in;
+    return in / 64.0 * (u1 - u0) * (v1 - v0);
+  }
+  for (size_t i = 0; i < n; ++i) bufA[i] = {double(p.pts[i][0]), double(p.pts[i][1])};
+  std::array<double, 2>* src = bufA;
+  std::array<double, 2>* dst = bufB;
+  for (int side = 0; side < 4 && n > 0; ++side) {
+    const int axis = side & 1;                       // 0: u, 1: v
+    const bool keepAbove = side < 2;                 // sides 0, 1: >= lower bound; 2, 3: <= upper
+    const double bound = side == 0 ? u0 : side == 1 ? v0 : side == 2 ? u1 : v1;
+    auto inside = [&](const std::array<double, 2>& q) { return keepAbove ? q[axis] >= bound : q[axis] <= bound; };
+    size_t m = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const auto& a = src[i];
+      const auto& b = src[(i + 1) % n];
+      const bool ia = inside(a), ib = inside(b);
+      if (ia) dst[m++] = a;
+      if (ia != ib) {
+        const double t = (bound - a[axis]) / (b[axis] - a[axis]);
+        std::array<double, 2> c{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])};
+        c[axis] = bound;
+        dst[m++] = c;
+      }
+    }
+    std::swap(src, dst);
+    n = m;
+  }
+  double a2 = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const auto& q = src[i];
+    const auto& r = src[(i + 1) % n];
+    a2 += q[0] * r[1] - r[0] * q[1];
+  }
+  return 0.5 * std::abs(a2);
+}
+
+std::array<float, kNumPrimaries> PanelEmitter::boxAveragePx(double u0, double v0, double u1, double v1) const {
+  std::array<float, kNumPrimaries> out{0.0f, 0.0f, 0.0f};
+  const double area = (u1 - u0) * (v1 - v0);
+  if (!(area > 0.0)) {
+    const PanelEmission e = lookupPx(0.5 * (u0 + u1), 0.5 * (v0 + v1));
+    if (e.channel >= 0) out[size_t(e.channel)] = e.weight;
+    return out;
+  }
+  // Only the part on the panel can emit.
+  const double cu0 = std::max(u0, 0.0), cv0 = std::max(v0, 0.0);
+  const double cu1 = std::min(u1, double(panelW_)), cv1 = std::min(v1, double(panelH_));
+  if (!(cu1 > cu0 && cv1 > cv0)) return out;
+  double sum[kNumPrimaries] = {0.0, 0.0, 0.0};
+  const int tu0 = int(std::floor(cu0 / tileW_)), tu1 = int(std::floor(cu1 / tileW_));
+  const int tv0 = int(std::floor(cv0 / tileH_)), tv1 = int(std::floor(cv1 / tileH_));
+  for (int tv = tv0; tv <= tv1; ++tv)
+    for (int tu = tu0; tu <= tu1; ++tu) {
+      const double ou = double(tu) * tileW_, ov = double(tv) * tileH_;
+      const double bu0 = cu0 - ou, bu1 = cu1 - ou, bv0 = cv0 - ov, bv1 = cv1 - ov;  // box in tile coordinates
+      for (const Poly& p : polys_) {
+        if (bu1 <= p.u0 || bu0 >= p.u1 || bv1 <= p.v0 || bv0 >= p.v1) continue;
+        const int col = tu * tileW_ + p.pixU, row = tv * tileH_ + p.pixV;
+        if (col >= panelW_ || row >= panelH_) continue;
+        const float drive = drive_[(size_t(row) * panelW_ + col) * 3 + size_t(p.channel)];
+        if (drive == 0.0f) continue;
+        double a;
+        if (p.rect) {
+          a = (std::min(bu1, double(p.u1)) - std::max(bu0, double(p.u0))) *
+              (std::min(bv1, double(p.v1)) - std::max(bv0, double(p.v0)));
+        } else {
+          a = polyBoxArea(p, std::max(bu0, double(p.u0)), std::max(bv0, double(p.v0)), std::min(bu1, double(p.u1)),
+                          std::min(bv1, double(p.v1)));
+        }
+        if (a > 0.0) sum[p.channel] += a * drive;
+      }
+    }
+  for (int c = 0; c < kNumPrimaries; ++c) out[size_t(c)] = float(sum[c] / area);
+  return out;
 }
 
 float PanelEmitter::radiance(const Point3& p, const Vec3& d, float lambdaNm) const {

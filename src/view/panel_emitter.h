@@ -92,6 +92,21 @@ class PanelEmitter {
   // Full spectral radiance along -d at p (0 on the black matrix and off the panel).
   float radiance(const Point3& p, const Vec3& d, float lambdaNm) const;
 
+  // The two halves of emit(), for estimators that filter over an area of the panel:
+  // where a ray that reached the emitting plane at `p` along `d` meets the emitter (after the
+  // cover glass, when there is one), in continuous panel pixel coordinates (u right, v down),
+  // and the factor emit() applies to the drive value there (angular profile x relative glass
+  // transmittance). False when nothing can emit toward the ray (d.z >= 0).
+  // emit(p, d, l) == lookupPx(uv) with its weight times `factor`.
+  bool emissionPointPx(const Point3& p, const Vec3& d, float lambdaNm, Vec2d& uv, float& factor) const;
+  // Average over the axis-aligned box [u0, u1] x [v0, v1] (panel pixel coordinates) of the
+  // emission per channel: (1 / box area) x sum over the subpixels of channel c of
+  // (area of subpixel n box) x its drive value. Exact: rectangles by their overlap, other
+  // polygons by clipping them to the box (Sutherland-Hodgman; exact area for any simple
+  // polygon). The black matrix and the area off the panel count as 0. A box of zero area is a
+  // point lookup (the channel of lookupPx gets its weight, the others 0).
+  std::array<float, kNumPrimaries> boxAveragePx(double u0, double v0, double u1, double v1) const;
+
   // Radiance spectrum of a channel's subpixel at full drive on axis: K_c L0 primary_c(lambda).
   float channelSpectrum(int channel, float lambdaNm) const;
   // L0 primary_c(lambda): a channel's contribution to the tile-averaged panel white.
@@ -116,7 +131,9 @@ class PanelEmitter {
     int pixU = 0, pixV = 0;  // pixel of the tile that owns it
     float u0, v0, u1, v1;    // bounding box, tile coordinates (pixels)
     std::vector<std::array<float, 2>> pts;
+    bool rect = false;       // an axis-aligned rectangle (its bounding box)
   };
+  double polyBoxArea(const Poly& p, double u0, double v0, double u1, double v1) const;
   float angular(float cosTheta) const;
 
   Panel panel_;

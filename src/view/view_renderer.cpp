@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "core/error.h"
@@ -18,6 +19,8 @@ namespace inim {
 const char* spectralSamplingName(SpectralSampling s) {
   return s == SpectralSampling::Primaries ? "primaries" : "visible";
 }
+
+const char* panelEstimatorName(PanelEstimator e) { return e == PanelEstimator::PointSample ? "point" : "footprint"; }
 
 DisplayArea lensletArrayArea(const EiLayout& L, double P) {
   DisplayArea a;
@@ -47,6 +50,12 @@ namespace {
 
 constexpr uint64_t kScrambleStream = 0xFFFFFFFFFFFFull;  // sample slot of the Sobol scramble seeds
 constexpr uint64_t kMlaSalt = 0x5EED0F3A11A0ull;         // salts the per-sample MLA stream
+constexpr uint64_t kProbeSalt = 0x9B0BE5A17ull;          // salts the Jacobian probes' MLA stream
+// Footprint estimator: finite-difference steps of the Jacobian probes (pixel units, and
+// fractions of the lens sample square), and the cap on the box half-width (panel pixels).
+constexpr float kProbePixelStep = 0.25f;
+constexpr float kProbeLensStep = 0.05f;
+constexpr double kMaxBoxHalfWidthPx = 8.0;
 
 // Importance sampling of one primary's spectrum: a piecewise-constant pdf on 1 nm bins over
 // 360-830 nm (bin mass = Simpson estimate of the spectrum over the bin, plus a floor of 1e-6
@@ -159,8 +168,14 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
     samplers.emplace_back([&](float l) { return panel.channelSpectrum(c, l); });
   }
 
+  const bool footprint = s.panelEstimator == PanelEstimator::Footprint;
+  if (footprint && !(s.footprintScale >= 0.0 && std::isfinite(s.footprintScale)))
+    throw InputError("", "footprintScale", std::to_string(s.footprintScale), "a finite scale >= 0");
+  // Box half-width = 0.5 x scale x (row norm of the Jacobian) / sqrt(spp): see the header.
+  const double boxScale = 0.5 * s.footprintScale / std::sqrt(double(spp));
+
   Image img(W, H, {"R", "G", "B"});
-  std::atomic<uint64_t> nCam{0}, nDisp{0}, nPanel{0}, nEmit{0}, nCulled{0};
+  std::atomic<uint64_t> nCam{0}, nDisp{0}, nPanel{0}, nEmit{0}, nCulled{0}, nProbe{0}, nProbeFail{0};
   const bool cull = s.cullTiles && bg == 0.0;
   ProgressBar bar("view", uint64_t(W) * H, s.progress && ProgressBar::stderrIsTerminal());
 
@@ -169,9 +184,13 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
       nCulled += uint64_t(tile.x1 - tile.x0) * uint64_t(tile.y1 - tile.y0);
       return;  // the image is already 0 there
     }
-    uint64_t cCam = 0, cDisp = 0, cPanel = 0, cEmit = 0;
-    // One traced ray from the camera to the panel at a wavelength.
-    auto trace = [&](const Ray& r, float lambda, Rng& rng, PanelEmission& em, float& throughput) -> Outcome {
+    uint64_t cCam = 0, cDisp = 0, cPanel = 0, cEmit = 0, cProbe = 0, cProbeFail = 0;
+    // Footprint: the half-widths (panel pixels) of this pixel's boxes.
+    double hu = 0.0, hv = 0.0;
+    // One traced ray from the camera to the panel at a wavelength. `em` gets the emission per
+    // channel (PointSample: only the landing subpixel's channel is non-zero).
+    auto trace = [&](const Ray& r, float lambda, Rng& rng, std::array<float, kNumPrimaries>& em,
+                     float& throughput) -> Outcome {
       ++cCam;
       if (!(r.d.z < 0.0f) || !(r.o.z > frontZ)) return Outcome::Background;
       const float t = (frontZ - r.o.z) / r.d.z;
@@ -182,12 +201,75 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
       PanelArrival arr;
       if (!mla.traceToPanel(local, lambda, rng, arr)) return Outcome::Nothing;
       ++cPanel;
-      em = panel.emit(arr, lambda);
       throughput = arr.throughput;
-      if (em.channel < 0 || em.weight == 0.0f) return Outcome::Nothing;
+      em = {0.0f, 0.0f, 0.0f};
+      if (!footprint) {
+        const PanelEmission e = panel.emit(arr, lambda);
+        if (e.channel < 0 || e.weight == 0.0f) return Outcome::Nothing;
+        em[size_t(e.channel)] = e.weight;
+      } else {
+        Vec2d uv;
+        float factor = 0.0f;
+        if (!panel.emissionPointPx(arr.p, arr.d, lambda, uv, factor)) return Outcome::Nothing;
+        em = panel.boxAveragePx(uv.x - hu, uv.y - hv, uv.x + hu, uv.y + hv);
+        for (auto& v : em) v *= factor;
+        if (em[0] == 0.0f && em[1] == 0.0f && em[2] == 0.0f) return Outcome::Nothing;
+      }
       ++cEmit;
       return Outcome::Panel;
     };
+    // Footprint: where the ray of sample coordinates (pixel x, y, lens u, v) lands on the
+    // emitter (panel pixels) at the reference wavelength, and through which lenslet. Every probe
+    // of a pixel replays the same MLA random stream, so Fresnel choices agree between them.
+    auto probe = [&](const float q[4], const Rng& rng0, Vec2d& uv, int& k, int& l) -> bool {
+      ++cProbe;
+      Ray r;
+      if (!(camera.generateRay(Vec2(q[0], q[1]), Vec2(q[2], q[3]), lambdaRef, r) > 0.0f)) return false;
+      if (!(r.d.z < 0.0f) || !(r.o.z > frontZ)) return false;
+      const Point3 p = r.o + ((frontZ - r.o.z) / r.d.z) * r.d;
+      if (!area.contains(p.x, p.y)) return false;
+      Rng rng = rng0;
+      PanelArrival arr;
+      if (!mla.traceToPanel(Ray{p, r.d, 0.0f, kInfinity}, lambdaRef, rng, arr)) return false;
+      float factor;
+      if (!panel.emissionPointPx(arr.p, arr.d, lambdaRef, uv, factor)) return false;
+      k = arr.lensletK;
+      l = arr.lensletL;
+      return true;
+    };
+    // The 2 x 4 Jacobian of the landing point with respect to the sample coordinates, by one-
+    // sided differences from the pixel centre and the lens centre, each step taken toward the
+    // side that stays in the base ray's lenslet. False when the base ray does not reach the panel.
+    auto jacobian = [&](int x, int y, uint64_t pixel, double J[2][4]) -> bool {
+      const Rng rng0 = Rng::forSample(s.seed ^ kProbeSalt, pixel, 0);
+      const float base[4] = {float(x) + 0.5f, float(y) + 0.5f, 0.5f, 0.5f};
+      Vec2d uv0;
+      int k0, l0;
+      if (!probe(base, rng0, uv0, k0, l0)) return false;
+      for (int j = 0; j < 4; ++j) {
+        bool ok = false;
+        // +step, -step, then 1/16 of the step each way (pixels much larger than a lenslet).
+        for (int attempt = 0; attempt < 4 && !ok; ++attempt) {
+          const float sign = (attempt & 1) ? -1.0f : 1.0f;
+          const float step = (j < 2 ? kProbePixelStep : kProbeLensStep) * (attempt < 2 ? 1.0f : 0.0625f);
+          float q[4] = {base[0], base[1], base[2], base[3]};
+          q[j] += sign * step;
+          Vec2d uv;
+          int k, l;
+          if (!probe(q, rng0, uv, k, l) || k != k0 || l != l0) continue;
+          J[0][j] = (uv.x - uv0.x) / double(sign * step);
+          J[1][j] = (uv.y - uv0.y) / double(sign * step);
+          ok = true;
+        }
+        if (!ok) {
+          J[0][j] = J[1][j] = 0.0;
+          ++cProbeFail;
+        }
+      }
+      return true;
+    };
+    bool haveLastJ = false;  // the tile's last measured Jacobian, for pixels whose probe fails
+    double lastJ[2][4] = {};
 
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
@@ -195,6 +277,24 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
         Rng scr = Rng::forSample(s.seed, pixel, kScrambleStream);
         uint32_t sc[SobolSequence::kDims];
         for (auto& v : sc) v = scr.nextU32();
+        if (footprint) {
+          double J[2][4];
+          if (jacobian(x, y, pixel, J)) {
+            std::memcpy(lastJ, J, sizeof J);
+            haveLastJ = true;
+          }
+          hu = hv = 0.0;
+          if (haveLastJ) {
+            double su = 0.0, sv = 0.0;
+            for (int j = 0; j < 4; ++j) {
+              su += lastJ[0][j] * lastJ[0][j];
+              sv += lastJ[1][j] * lastJ[1][j];
+            }
+            hu = std::min(boxScale * std::sqrt(su), kMaxBoxHalfWidthPx);
+            hv = std::min(boxScale * std::sqrt(sv), kMaxBoxHalfWidthPx);
+            if (!std::isfinite(hu) || !std::isfinite(hv)) hu = hv = 0.0;
+          }
+        }
         Vec3d acc(0.0);
         for (int si = 0; si < spp; ++si) {
           const uint32_t idx = uint32_t(si);
@@ -202,7 +302,7 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
           const Vec2 lens(SobolSequence::sample(idx, 2, sc[2]), SobolSequence::sample(idx, 3, sc[3]));
           const float ul = SobolSequence::sample(idx, 4, sc[4]);
           Rng rng = Rng::forSample(s.seed ^ kMlaSalt, pixel, uint64_t(si));
-          PanelEmission em;
+          std::array<float, kNumPrimaries> em{};
           float T = 1.0f;
           Ray ray;
           if (!dispersive) {
@@ -212,16 +312,19 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
             if (o == Outcome::Background) {
               acc += double(w) * bg;
             } else if (o == Outcome::Panel) {
-              const double k = double(w) * T * em.weight;
-              if (primaries) {
-                acc += k * channelRgb[em.channel];
-              } else {
-                const SampledWavelengths wl = SampledWavelengths::sampleVisible(ul);
-                Vec3d sum(0.0);
-                for (int i = 0; i < kNumWavelengths; ++i)
-                  if (wl.pdf()[i] > 0.0f)
-                    sum += sensor.response(wl[i]) * (double(panel.channelSpectrum(em.channel, wl[i])) / wl.pdf()[i]);
-                acc += k * sum / double(kNumWavelengths);
+              for (int c = 0; c < kNumPrimaries; ++c) {
+                if (em[size_t(c)] == 0.0f) continue;
+                const double k = double(w) * T * em[size_t(c)];
+                if (primaries) {
+                  acc += k * channelRgb[c];
+                } else {
+                  const SampledWavelengths wl = SampledWavelengths::sampleVisible(ul);
+                  Vec3d sum(0.0);
+                  for (int i = 0; i < kNumWavelengths; ++i)
+                    if (wl.pdf()[i] > 0.0f)
+                      sum += sensor.response(wl[i]) * (double(panel.channelSpectrum(c, wl[i])) / wl.pdf()[i]);
+                  acc += k * sum / double(kNumWavelengths);
+                }
               }
             }
             continue;
@@ -257,9 +360,11 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
             if (o == Outcome::Background) {
               acc += double(w) * bg / double(raysPerSample);
             } else if (o == Outcome::Panel) {
-              if (primaries && em.channel != j) continue;
-              const double k = double(w) * T * em.weight * panel.channelSpectrum(em.channel, lambda) / pdf;
-              acc += sensor.response(lambda) * (primaries ? k : k / double(kNumWavelengths));
+              for (int c = 0; c < kNumPrimaries; ++c) {
+                if (em[size_t(c)] == 0.0f || (primaries && c != j)) continue;
+                const double k = double(w) * T * em[size_t(c)] * panel.channelSpectrum(c, lambda) / pdf;
+                acc += sensor.response(lambda) * (primaries ? k : k / double(kNumWavelengths));
+              }
             }
           }
         }
@@ -270,6 +375,8 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
     nDisp += cDisp;
     nPanel += cPanel;
     nEmit += cEmit;
+    nProbe += cProbe;
+    nProbeFail += cProbeFail;
   }, &bar, 16);
   bar.finish();
 
@@ -280,6 +387,8 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
   r.stats.panelRays = nPanel;
   r.stats.emittingRays = nEmit;
   r.stats.culledPixels = nCulled;
+  r.stats.probeRays = nProbe;
+  r.stats.probeFailures = nProbeFail;
   r.stats.raysPerSample = raysPerSample;
   r.stats.dispersive = dispersive;
   r.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
