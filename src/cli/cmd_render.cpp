@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/scene_options.h"
 #include "core/error.h"
 #include "core/output_file.h"
 #include "core/parallel.h"
@@ -33,7 +34,9 @@ void addRenderCommand(CLI::App& app) {
   };
   auto o = std::make_shared<Opts>();
   auto* cmd = app.add_subcommand("render", "Render a scene spectrally through a pinhole or thin-lens camera");
-  cmd->add_option("--scene", o->scene, "Scene JSON (default: scenes/paper-fig7.json)");
+  cmd->add_option("--scene,--field", o->scene,
+                  "Scene JSON, or a trained radiance field (.inimrf) for novel views in its own units and frame "
+                  "(default: scenes/paper-fig7.json)");
   cmd->add_option("--out", o->out, "Output EXR (linear Rec.709 + A + Z); an sRGB PNG is written beside it")
       ->required();
   cmd->add_option("--width", o->cam.width, "Image width, pixels")->capture_default_str();
@@ -61,7 +64,11 @@ void addRenderCommand(CLI::App& app) {
     ThreadLimit threads(o->run.threads);
 
     std::string scenePath = o->scene.empty() ? defaultScenePath() : o->scene;
-    auto scene = AnalyticScene::load(scenePath);
+    LoadedField lf = loadField(scenePath, "--field");
+    auto* scene = dynamic_cast<AnalyticScene*>(lf.field.get());
+    if ((!o->integrator.empty() || o->maxDepth >= 0) && !scene)
+      throw InputError("", o->integrator.empty() ? "--max-depth" : "--integrator", scenePath,
+                       "an analytic scene (a radiance field has no integrator)");
     if (!o->integrator.empty() || o->maxDepth >= 0) {
       IntegratorSettings is = scene->integratorSettings();
       if (o->integrator == "direct") is.type = IntegratorSettings::Type::Direct;
@@ -73,7 +80,7 @@ void addRenderCommand(CLI::App& app) {
     RenderSettings rs;
     rs.spp = o->spp;
     rs.seed = o->run.seed;
-    RenderResult r = renderField(*scene, camera, rs);
+    RenderResult r = renderField(*lf.field, camera, rs);
 
     std::string png = std::filesystem::path(o->out).replace_extension(".png").string();
     OutputSet outputs;

@@ -21,6 +21,9 @@ void addReferenceCommand(CLI::App& app);  // inim reference
 void addFig11Command(CLI::App& app);    // inim fig11
 void addStudyCommand(CLI::App& app);    // inim study NAME
 void addQueryCommand(CLI::App& app);    // inim query --field F --rays R --out C
+void addTrainCommand(CLI::App& app);    // inim train --data DIR --out MODEL
+void addEvalCommand(CLI::App& app);     // inim eval --model MODEL --data DIR
+void addCaptureCommand(CLI::App& app);  // inim capture --scene FILE --out DIR
 
 // Options every command that computes shares.
 struct RunOptions {

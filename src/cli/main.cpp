@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
   inim::cli::addFig11Command(app);
   inim::cli::addStudyCommand(app);
   inim::cli::addQueryCommand(app);
+  inim::cli::addCaptureCommand(app);
+  inim::cli::addTrainCommand(app);
+  inim::cli::addEvalCommand(app);
   inim::cli::addCompareCommand(app);
   inim::cli::addLensCommand(app);
   inim::cli::addBenchCommand(app);

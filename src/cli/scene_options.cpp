@@ -2,7 +2,9 @@
 
 #include <filesystem>
 
+#include "cli/radiance_data.h"
 #include "core/error.h"
+#include "radiance/radiance_field.h"
 #include "scene/analytic_scene.h"
 
 namespace inim::cli {
@@ -36,6 +38,13 @@ LoadedField loadField(const std::string& path, const std::string& key) {
   if (ext == ".json") {
     f.field = AnalyticScene::load(path);
     f.kind = "analytic scene";
+    return f;
+  }
+  if (ext == ".inimrf") {
+    auto rf = RadianceField::load(path);
+    f.placement = defaultPlacementFor(rf->grid().metadata);
+    f.field = std::move(rf);
+    f.kind = "radiance field";
     return f;
   }
   throw InputError("", key, "\"" + path + "\"", "an analytic scene (.json) or a trained radiance field (.inimrf)");

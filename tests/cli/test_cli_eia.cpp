@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli/cli_helpers.h"
 #include "cli/run_cli.h"
 #include "core/image.h"
 #include "display/display.h"
@@ -42,32 +43,6 @@ std::string path(const std::string& name) { return scratchFolder.path(name); }
 using Result = CliResult;
 Result run(const std::string& args) { return runInimBinary(binary(), args); }
 
-void writeText(const std::string& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-}
-
-std::string data(const std::string& rel) { return std::string(INIM_SOURCE_DATA_DIR) + "/" + rel; }
-
-// A small display: K x R EIs of n px (0.1 mm pixels), panel with a 3 px border.
-std::string smallDisplayJson(int K, int R, int n, double gap = 3.0, double pitch = 0.9, int panelW = 0,
-                             int panelH = 0) {
-  if (!panelW) panelW = K * n + 6;
-  if (!panelH) panelH = R * n + 6;
-  std::ostringstream s;
-  s << R"({"name": "small test display",
-  "panel": {"name": "test panel", "resolution_px": [)"
-    << panelW << ", " << panelH << R"(], "pixel_pitch_mm": 0.1,
-            "primaries": {"R": {"gaussian": {"mean_nm": 625, "fwhm_nm": 35}},
-                          "G": {"gaussian": {"mean_nm": 530, "fwhm_nm": 35}},
-                          "B": {"gaussian": {"mean_nm": 460, "fwhm_nm": 30}}},
-            "peak_luminance_cd_m2": 500},
-  "mla": {"name": "test mla", "pitch_mm": )"
-    << pitch << R"(, "focal_length_mm": 3.0, "substrate_thickness_mm": 1.0, "material": "PMMA"},
-  "generation_gap_mm": )"
-    << gap << R"(, "reconstruction_gap_mm": 3.5, "ei_px": )" << n << R"(, "ei_count": [)" << K << ", " << R << "]}";
-  return s.str();
-}
 
 std::string smallDisplay() {
   static std::string file = [] {
@@ -83,15 +58,7 @@ std::string smallDisplay() {
 // of `outputs` exists (nor a temporary beside it).
 void expectBadInput(const std::string& args, std::initializer_list<std::string> needles,
                     std::initializer_list<std::string> outputs) {
-  Result r = run(args);
-  EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
-  EXPECT_NE(r.output.find("inim: error:"), std::string::npos) << r.output;
-  for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "message lacks '" << n << "':\n" << r.output;
-  for (const auto& o : outputs) {
-    EXPECT_FALSE(fs::exists(o)) << o << " was left behind by: " << args;
-    for (const auto& e : fs::directory_iterator(fs::path(o).parent_path()))
-      EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << "temporary left: " << e.path();
-  }
+  expectBadInputWith([](const std::string& a) { return run(a); }, args, needles, outputs);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli/cli_helpers.h"
 #include "cli/run_cli.h"
 #include "core/image.h"
 
@@ -25,12 +26,6 @@ namespace {
 ScratchDir scratchFolder("test_cli_view");
 std::string path(const std::string& name) { return scratchFolder.path(name); }
 
-void writeText(const std::string& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-}
-
-std::string data(const std::string& rel) { return std::string(INIM_SOURCE_DATA_DIR) + "/" + rel; }
 
 // 12 x 8 EIs of 10 px (0.1 mm pixels), 1.0 mm lenslets, f = 3 mm, viewed at g = 3.5 mm; panel with a
 // 3 px border: 126 x 86 px.
@@ -71,15 +66,7 @@ std::string cameraArgs(const std::string& model = "pinhole") {
 
 void expectBadInput(const std::string& args, std::initializer_list<std::string> needles,
                     std::initializer_list<std::string> outputs) {
-  CliResult r = runInim(args);
-  EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
-  EXPECT_NE(r.output.find("inim: error:"), std::string::npos) << r.output;
-  for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "message lacks '" << n << "':\n" << r.output;
-  for (const auto& o : outputs) {
-    EXPECT_FALSE(fs::exists(o)) << o << " was left behind by: " << args;
-    for (const auto& e : fs::directory_iterator(fs::path(o).parent_path()))
-      EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << "temporary left: " << e.path();
-  }
+  expectBadInputWith([](const std::string& a) { return runInim(a); }, args, needles, outputs);
 }
 
 }  // namespace

@@ -1,0 +1,55 @@
+#include "cli/radiance_data.h"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace inim::cli {
+
+TrainingRays datasetRays(const Dataset& data, const std::vector<int>& frames) {
+  TrainingRays r;
+  size_t n = 0;
+  for (int i : frames) n += size_t(data.frames[size_t(i)].image.width) * size_t(data.frames[size_t(i)].image.height);
+  r.origin.reserve(n), r.dir.reserve(n), r.rgb.reserve(n), r.tNear.reserve(n), r.tFar.reserve(n);
+  for (int i : frames) {
+    const DatasetFrame& f = data.frames[size_t(i)];
+    const Image& img = f.image;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        glm::dvec3 o, d;
+        frameRay(f, x + 0.5, y + 0.5, o, d);
+        r.origin.push_back(Point3(o));
+        r.dir.push_back(Vec3(glm::normalize(d)));
+        r.rgb.push_back(Vec3(img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)));
+        r.tNear.push_back(float(data.nearPlane));
+        r.tFar.push_back(float(data.farPlane));
+      }
+  }
+  return r;
+}
+
+std::string modelMetadata(const Dataset& data) {
+  nlohmann::json j = {{"dataset", data.file}, {"format", data.format}, {"units", "dataset"}};
+  // An inim capture records its scene and units in transforms.json.
+  std::ifstream f(data.file);
+  if (f && data.format != "middlebury") {
+    nlohmann::json t = nlohmann::json::parse(f, nullptr, false);
+    if (!t.is_discarded() && t.contains("inim_capture") && t["inim_capture"].is_object()) {
+      const auto& c = t["inim_capture"];
+      if (c.value("units", "") == "mm") j["units"] = "mm";
+      if (c.contains("scene")) j["scene"] = c["scene"];
+    }
+  }
+  return j.dump();
+}
+
+Placement defaultPlacementFor(const std::string& metadata) {
+  Placement p;
+  p.source = "the model's default";
+  p.scaleKey = "scale";
+  nlohmann::json j = nlohmann::json::parse(metadata, nullptr, false);
+  const bool mm = !j.is_discarded() && j.is_object() && j.value("units", "") == "mm";
+  if (!mm) p.scale = Vec3d(1.0 / 0.0075);  // the paper's NeRF placement: 0.0075 field units per mm
+  return p;
+}
+
+}  // namespace inim::cli

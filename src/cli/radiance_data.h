@@ -1,0 +1,25 @@
+#pragma once
+// Between datasets (src/dataset) and radiance fields (src/radiance): the training rays of a
+// dataset's frames, and the model's metadata (what it was trained on, in which units), which
+// decides its default placement in front of a display.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dataset/dataset.h"
+#include "radiance/trainer.h"
+#include "synthesis/placement.h"
+
+namespace inim::cli {
+
+// One ray per pixel centre of the given frames, with the frame's pixel values (sRGB-encoded)
+// and the dataset's near/far.
+TrainingRays datasetRays(const Dataset& data, const std::vector<int>& frames);
+
+// The JSON stored in a model: {"dataset": ..., "format": ..., "units": "mm" | "dataset",
+// "scene": ...}. An inim capture is in mm (placement scale 1); any other dataset is in its
+// own units, placed at the paper's 0.0075 field units per mm unless the user says otherwise.
+std::string modelMetadata(const Dataset& data);
+Placement defaultPlacementFor(const std::string& metadata);
+
+}  // namespace inim::cli

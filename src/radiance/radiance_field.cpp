@@ -1,0 +1,49 @@
+// RadianceField: the Field adapter over VolumeRenderer.
+#include "radiance/radiance_field.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <stdexcept>
+
+#include "radiance/grid_io.h"
+#include "spectral/color.h"
+
+namespace inim {
+
+RadianceField::RadianceField(VoxelGrid grid, const MarchSettings& settings)
+    : grid_(std::move(grid)), renderer_(grid_, settings) {}
+
+std::unique_ptr<RadianceField> RadianceField::load(const std::string& path) {
+  return std::make_unique<RadianceField>(loadVoxelGrid(path));
+}
+
+void RadianceField::query(std::span<const FieldRay> rays, std::span<const SampledWavelengths>,
+                          std::span<FieldSample> out, uint64_t) const {
+  if (out.size() < rays.size()) throw std::invalid_argument("RadianceField: output too small");
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 256),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i < r.end(); ++i) {
+                        const FieldRay& fr = rays[i];
+                        float tNear = fr.tNear, tFar = fr.tFar;
+                        RadianceSample res;
+                        if (!(tNear <= tFar)) {
+                          res = backgroundResult(grid_);
+                        } else {
+                          res = renderer_.render(RenderRay{fr.o, fr.d, tNear, tFar});
+                        }
+                        FieldSample& s = out[i];
+                        s.rgb = Vec3(srgbDecode(res.rgb.x), srgbDecode(res.rgb.y),
+                                     srgbDecode(res.rgb.z));
+                        s.depth = res.depth;
+                        s.opacity = res.opacity;
+                      }
+                    });
+}
+
+void RadianceField::bounds(Point3& lo, Point3& hi) const {
+  lo = grid_.lo;
+  hi = grid_.hi;
+}
+
+}  // namespace inim

@@ -1,0 +1,370 @@
+// The training loop: batches, chunked forward/backward, slab scatter, TV, lazy Adam,
+// occupancy refresh and coarse-to-fine stages.
+#include "radiance/trainer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "radiance/occupancy_grid.h"
+#include "radiance/sparse_adam.h"
+#include "radiance/spherical_harmonics.h"
+#include "radiance/volume_renderer.h"
+
+namespace inim {
+namespace {
+
+constexpr int kChunkRays = 128;  // rays per chunk: the unit of parallel work
+constexpr int kMaxSlabs = 32;    // x-slabs of the grid for the ordered scatter
+
+void check(bool ok, const std::string& key, const std::string& value, const std::string& expected) {
+  if (!ok) throw InputError("train config", key, value, expected);
+}
+
+void validate(const TrainingRays& rays, const TrainConfig& c) {
+  size_t n = rays.origin.size();
+  check(n > 0, "rays", "0", "at least one training ray");
+  check(rays.dir.size() == n && rays.rgb.size() == n, "rays",
+        std::to_string(rays.dir.size()) + " directions, " + std::to_string(rays.rgb.size()) + " colours",
+        std::to_string(n) + " of each");
+  check(rays.tNear.empty() || rays.tNear.size() == n, "tNear", std::to_string(rays.tNear.size()),
+        "empty or one per ray");
+  check(rays.tFar.empty() || rays.tFar.size() == n, "tFar", std::to_string(rays.tFar.size()),
+        "empty or one per ray");
+  check(glm::all(glm::lessThan(c.boxLo, c.boxHi)) && isFinite(c.boxLo) && isFinite(c.boxHi), "box",
+        "lo >= hi", "finite box with lo < hi on every axis");
+  check(c.iterations >= 0, "iterations", std::to_string(c.iterations), ">= 0");
+  check(c.batchSize > 0, "batch_size", std::to_string(c.batchSize), "> 0");
+  check(c.shDegree >= 0 && c.shDegree <= 2, "sh_degree", std::to_string(c.shDegree), "0, 1 or 2");
+  check(!c.resolutions.empty() && c.resolutions.size() == c.stageStarts.size(), "resolutions",
+        std::to_string(c.resolutions.size()) + " resolutions, " +
+            std::to_string(c.stageStarts.size()) + " stage starts",
+        "one stage start per resolution");
+  for (size_t s = 0; s < c.resolutions.size(); ++s) {
+    check(c.resolutions[s] >= 2 && c.resolutions[s] <= 1024, "resolutions",
+          std::to_string(c.resolutions[s]), "between 2 and 1024");
+    check(s == 0 ? c.stageStarts[s] == 0 : c.stageStarts[s] > c.stageStarts[s - 1], "stage_starts",
+          std::to_string(c.stageStarts[s]), "0 first, then increasing");
+  }
+  check(c.initAlpha > 0.0f && c.initAlpha < 1.0f, "init_alpha", std::to_string(c.initAlpha), "in (0, 1)");
+  check(c.lrDensity >= 0.0f && c.lrColor >= 0.0f && c.lrFinalFactor > 0.0f, "lr", "negative",
+        "non-negative learning rates and a positive final factor");
+  check(c.tvDensity >= 0.0f && c.tvColor >= 0.0f, "tv", "negative", "non-negative TV weights");
+  check(c.tvInterval > 0, "tv_interval", std::to_string(c.tvInterval), "> 0");
+  check(c.march.stepVoxels > 0.0f, "step_voxels", std::to_string(c.march.stepVoxels), "> 0");
+  check(c.occupancyInterval > 0, "occupancy_interval", std::to_string(c.occupancyInterval), "> 0");
+}
+
+struct SlabRecord {
+  SampleGrad g;
+  uint32_t ray;  // index of the ray within its chunk (its SH basis)
+};
+
+// Everything that depends on the grid's resolution.
+struct Optimiser {
+  std::vector<float> gradDensity, gradColor;
+  std::vector<uint8_t> touchedFlag;
+  SparseAdam adamDensity, adamColor;
+  std::vector<int> slabOfX;
+  int slabs = 1;
+  int step = 0;
+
+  void reset(const VoxelGrid& g) {
+    size_t n = g.vertexCount();
+    gradDensity.assign(n, 0.0f);
+    gradColor.assign(n * size_t(g.colorStride()), 0.0f);
+    touchedFlag.assign(n, 0);
+    adamDensity = SparseAdam(n, 1);
+    adamColor = SparseAdam(n, g.colorStride());
+    slabs = std::min(kMaxSlabs, g.res.x);
+    slabOfX.resize(size_t(g.res.x));
+    for (int x = 0; x < g.res.x; ++x) slabOfX[size_t(x)] = int(int64_t(x) * slabs / g.res.x);
+    step = 0;
+  }
+};
+
+struct Chunk {
+  MarchScratch scratch;
+  std::vector<SampleGrad> grads;
+  std::vector<float> sh;  // kMaxShCount per ray
+  double sqError = 0.0;
+  size_t samples = 0;
+};
+
+// Spreads one sample's gradient to the corners of its cell that lie in slab `s`.
+template <int D>
+inline void scatter(const SlabRecord& rec, const float* sh, int s, const VoxelGrid& g,
+                    Optimiser& opt, std::vector<uint32_t>& touched) {
+  constexpr int N = shCount(D), S = 3 * N;
+  const size_t sy = size_t(g.res.z), sx = size_t(g.res.y) * sy;
+  const SampleGrad& sg = rec.g;
+  size_t x0 = sg.base / sx;
+  bool low = opt.slabOfX[x0] == s, high = opt.slabOfX[x0 + 1] == s;
+  float x1 = sg.fx, y1 = sg.fy, z1 = sg.fz, xa = 1 - x1, ya = 1 - y1, za = 1 - z1;
+  const float w[8] = {xa * ya * za, xa * ya * z1, xa * y1 * za, xa * y1 * z1,
+                      x1 * ya * za, x1 * ya * z1, x1 * y1 * za, x1 * y1 * z1};
+  float gc[S];
+  for (int l = 0; l < N; ++l)
+    for (int ch = 0; ch < 3; ++ch) gc[3 * l + ch] = sh[l] * sg.gColor[ch];
+  for (int k = 0; k < 8; ++k) {
+    if (k < 4 ? !low : !high) continue;
+    size_t i = sg.base + (k >> 2) * sx + ((k >> 1) & 1) * sy + (k & 1);
+    if (!opt.touchedFlag[i]) {
+      opt.touchedFlag[i] = 1;
+      touched.push_back(uint32_t(i));
+    }
+    opt.gradDensity[i] += w[k] * sg.gDensity;
+    float* dst = &opt.gradColor[i * S];
+    for (int j = 0; j < S; ++j) dst[j] += w[k] * gc[j];
+  }
+}
+
+// Gradient of  tv * sum over grid edges (a - b)^2 / 2  at vertex i, added to its gradient.
+void addTv(const VoxelGrid& g, uint32_t i, float tvD, float tvC, Optimiser& opt) {
+  const size_t sy = size_t(g.res.z), sx = size_t(g.res.y) * sy;
+  int x = int(i / sx), y = int((i / sy) % size_t(g.res.y)), z = int(i % sy);
+  const int S = g.colorStride();
+  const int pos[3] = {x, y, z};
+  const size_t strides[3] = {sx, sy, 1};
+  float gd = 0.0f;
+  float gc[3 * kMaxShCount] = {};
+  const float* ci = &g.color[size_t(i) * S];
+  for (int a = 0; a < 3; ++a)
+    for (int sgn = -1; sgn <= 1; sgn += 2) {
+      int p = pos[a] + sgn;
+      if (p < 0 || p >= g.res[a]) continue;
+      size_t n = sgn > 0 ? i + strides[a] : i - strides[a];
+      gd += g.density[i] - g.density[n];
+      if (tvC > 0.0f) {
+        const float* cn = &g.color[n * S];
+        for (int j = 0; j < S; ++j) gc[j] += ci[j] - cn[j];
+      }
+    }
+  opt.gradDensity[i] += tvD * gd;
+  if (tvC > 0.0f) {
+    float* dst = &opt.gradColor[size_t(i) * S];
+    for (int j = 0; j < S; ++j) dst[j] += tvC * gc[j];
+  }
+}
+
+// The box of the cells whose opacity per cell exceeds `alpha`, grown by `margin` cells.
+bool occupiedBox(const VoxelGrid& g, float alpha, int margin, Point3& lo, Point3& hi) {
+  OccupancyGrid occ;
+  occ.update(g, g.minCellSize(), alpha);
+  glm::ivec3 cl, ch;
+  if (!occ.occupiedBounds(cl, ch)) return false;
+  Vec3 cell = g.cellSize();
+  lo = glm::max(g.lo, g.lo + Vec3(cl - margin) * cell);
+  hi = glm::min(g.hi, g.lo + Vec3(ch + 1 + margin) * cell);
+  return glm::all(glm::lessThan(lo, hi));
+}
+
+}  // namespace
+
+TrainStats train(VoxelGrid& grid, const TrainingRays& rays, const TrainConfig& cfg,
+                 const std::function<bool(const TrainProgress&)>& onProgress) {
+  validate(rays, cfg);
+  auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const size_t numRays = rays.size();
+  const int batch = cfg.batchSize;
+  const int numChunks = (batch + kChunkRays - 1) / kChunkRays;
+
+  grid = VoxelGrid::create(cfg.boxLo, cfg.boxHi,
+                           VoxelGrid::resolutionFor(cfg.boxLo, cfg.boxHi, cfg.resolutions[0]),
+                           cfg.shDegree, cfg.activation, cfg.background, cfg.initAlpha);
+  Optimiser opt;
+  opt.reset(grid);
+  OccupancyGrid occ;
+  std::vector<Chunk> chunks(static_cast<size_t>(numChunks));
+  std::vector<std::vector<SlabRecord>> buckets;
+  std::vector<std::vector<uint32_t>> touched;
+  size_t stage = 0;
+
+  TrainStats stats;
+  double lastLoss = 0.0;
+  for (int it = 0; it < cfg.iterations; ++it) {
+    // Coarse-to-fine growth (and box tightening after the first stage).
+    if (stage + 1 < cfg.resolutions.size() && it == cfg.stageStarts[stage + 1]) {
+      ++stage;
+      Point3 lo = grid.lo, hi = grid.hi;
+      if (stage == 1 && cfg.tightenBox) {
+        Point3 tlo, thi;
+        if (occupiedBox(grid, cfg.tightenAlpha, cfg.tightenMarginCells, tlo, thi)) lo = tlo, hi = thi;
+      }
+      grid = grid.resampled(lo, hi, VoxelGrid::resolutionFor(lo, hi, cfg.resolutions[stage]));
+      opt.reset(grid);
+    }
+    if (it % cfg.occupancyInterval == 0 || occ.cellRes() != grid.res - 1)
+      occ.update(grid, cfg.march.stepWorld(grid), cfg.march.occupancyAlpha);
+
+    const int slabs = opt.slabs;
+    buckets.resize(size_t(numChunks) * size_t(slabs));
+    touched.resize(size_t(slabs));
+    const float step = cfg.march.stepWorld(grid);
+    const float lossWeight = 1.0f / (3.0f * float(batch));
+    const size_t sx = size_t(grid.res.y) * size_t(grid.res.z);
+
+    // 1. Forward + backward per chunk; records go to per-(chunk, slab) buckets.
+    tbb::parallel_for(tbb::blocked_range<int>(0, numChunks, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int c = r.begin(); c < r.end(); ++c) {
+        Chunk& ch = chunks[size_t(c)];
+        ch.sqError = 0.0;
+        ch.samples = 0;
+        ch.sh.resize(size_t(kChunkRays) * kMaxShCount);
+        for (int s = 0; s < slabs; ++s) buckets[size_t(c) * slabs + s].clear();
+        int k0 = c * kChunkRays, k1 = std::min(batch, k0 + kChunkRays);
+        for (int k = k0; k < k1; ++k) {
+          Rng rng = Rng::forSample(cfg.seed, uint64_t(it), uint64_t(k));
+          uint64_t pick = (uint64_t(rng.nextU32()) << 32) | rng.nextU32();
+          size_t idx = size_t(pick % numRays);
+          float jitter = rng.uniform();
+          Vec3 dir = rays.dir[idx];
+          float len = glm::length(dir);
+          const Vec3& target = rays.rgb[idx];
+          GridRay gr;
+          RadianceSample res = backgroundResult(grid);
+          ch.grads.clear();
+          if (len > 0.0f &&
+              makeGridRay(grid, rays.origin[idx], dir / len,
+                          rays.tNear.empty() ? cfg.nearT : rays.tNear[idx],
+                          rays.tFar.empty() ? cfg.farT : rays.tFar[idx], step, gr)) {
+            res = marchRayGrad(grid, occ, gr, jitter, cfg.march.minTransmittance, target,
+                               lossWeight, ch.scratch, ch.grads);
+            evalSh(grid.shDegree, gr.dir, &ch.sh[size_t(k - k0) * kMaxShCount]);
+          }
+          Vec3 e = res.rgb - target;
+          ch.sqError += double(e.x) * e.x + double(e.y) * e.y + double(e.z) * e.z;
+          ch.samples += ch.grads.size();
+          for (const SampleGrad& sg : ch.grads) {
+            size_t x0 = sg.base / sx;
+            int s0 = opt.slabOfX[x0], s1 = opt.slabOfX[x0 + 1];
+            buckets[size_t(c) * slabs + s0].push_back({sg, uint32_t(k - k0)});
+            if (s1 != s0) buckets[size_t(c) * slabs + s1].push_back({sg, uint32_t(k - k0)});
+          }
+        }
+      }
+    });
+
+    // 2. Ordered scatter per slab, then TV on the touched vertices.
+    tbb::parallel_for(tbb::blocked_range<int>(0, slabs, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int s = r.begin(); s < r.end(); ++s) {
+        auto& list = touched[size_t(s)];
+        list.clear();
+        for (int c = 0; c < numChunks; ++c) {
+          const float* shBase = chunks[size_t(c)].sh.data();
+          for (const SlabRecord& rec : buckets[size_t(c) * slabs + s]) {
+            const float* sh = shBase + size_t(rec.ray) * kMaxShCount;
+            switch (grid.shDegree) {
+              case 0: scatter<0>(rec, sh, s, grid, opt, list); break;
+              case 1: scatter<1>(rec, sh, s, grid, opt, list); break;
+              default: scatter<2>(rec, sh, s, grid, opt, list); break;
+            }
+          }
+        }
+        if ((cfg.tvDensity > 0.0f || cfg.tvColor > 0.0f) && it % cfg.tvInterval == 0) {
+          float w = lossWeight * float(cfg.tvInterval);
+          for (uint32_t v : list) addTv(grid, v, cfg.tvDensity * w, cfg.tvColor * w, opt);
+        }
+      }
+    });
+
+    // 3. Lazy Adam on the touched vertices (after all TV reads of the current values).
+    opt.step++;
+    float decay = std::pow(cfg.lrFinalFactor, float(it) / float(std::max(1, cfg.iterations)));
+    tbb::parallel_for(tbb::blocked_range<int>(0, slabs, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int s = r.begin(); s < r.end(); ++s) {
+        const auto& list = touched[size_t(s)];
+        opt.adamDensity.update(list, grid.density.data(), opt.gradDensity.data(),
+                               cfg.lrDensity * decay, opt.step);
+        opt.adamColor.update(list, grid.color.data(), opt.gradColor.data(), cfg.lrColor * decay,
+                             opt.step);
+        for (uint32_t v : list) opt.touchedFlag[v] = 0;
+      }
+    });
+
+    double sq = 0.0;
+    size_t samples = 0;
+    for (const Chunk& ch : chunks) sq += ch.sqError, samples += ch.samples;
+    lastLoss = sq / (3.0 * double(batch));
+    stats.iterations = it + 1;
+    bool last = it + 1 == cfg.iterations;
+    bool overTime = cfg.timeBudgetSeconds > 0.0 && elapsed() > cfg.timeBudgetSeconds;
+    if (onProgress && ((it + 1) % std::max(1, cfg.progressInterval) == 0 || last || overTime)) {
+      TrainProgress p;
+      p.iteration = it + 1;
+      p.iterations = cfg.iterations;
+      p.loss = lastLoss;
+      p.psnr = psnrFromMse(lastLoss);
+      p.elapsedSeconds = elapsed();
+      p.res = grid.res;
+      p.occupiedFraction = occ.occupiedFraction();
+      p.samplesPerRay = double(samples) / double(batch);
+      if (!onProgress(p)) {
+        stats.stoppedEarly = !last;
+        break;
+      }
+    }
+    if (overTime && !last) {
+      stats.stoppedEarly = true;
+      break;
+    }
+  }
+  stats.loss = lastLoss;
+  stats.psnr = psnrFromMse(lastLoss);
+  stats.seconds = elapsed();
+  return stats;
+}
+
+double lossAndGradient(const VoxelGrid& grid, const TrainingRays& rays, const MarchSettings& march,
+                       std::vector<float>& gradDensity, std::vector<float>& gradColor) {
+  const int S = grid.colorStride(), N = shCount(grid.shDegree);
+  gradDensity.assign(grid.vertexCount(), 0.0f);
+  gradColor.assign(grid.vertexCount() * size_t(S), 0.0f);
+  OccupancyGrid occ;
+  occ.fillAll(grid);
+  MarchScratch scratch;
+  std::vector<SampleGrad> grads;
+  const float lossWeight = 1.0f / (3.0f * float(rays.size()));
+  const size_t sy = size_t(grid.res.z), sx = size_t(grid.res.y) * sy;
+  double sq = 0.0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    GridRay gr;
+    RadianceSample res = backgroundResult(grid);
+    grads.clear();
+    float len = glm::length(rays.dir[i]);
+    if (len > 0.0f && makeGridRay(grid, rays.origin[i], rays.dir[i] / len,
+                                  rays.tNear.empty() ? 0.0f : rays.tNear[i],
+                                  rays.tFar.empty() ? kInfinity : rays.tFar[i],
+                                  march.stepWorld(grid), gr))
+      res = marchRayGrad(grid, occ, gr, 0.5f, march.minTransmittance, rays.rgb[i], lossWeight,
+                         scratch, grads);
+    Vec3 e = res.rgb - rays.rgb[i];
+    sq += double(glm::dot(e, e));
+    float sh[kMaxShCount];
+    evalSh(grid.shDegree, gr.dir, sh);
+    for (const SampleGrad& g : grads) {
+      float w[8];
+      float x1 = g.fx, y1 = g.fy, z1 = g.fz;
+      for (int k = 0; k < 8; ++k)
+        w[k] = ((k >> 2) ? x1 : 1 - x1) * (((k >> 1) & 1) ? y1 : 1 - y1) * ((k & 1) ? z1 : 1 - z1);
+      for (int k = 0; k < 8; ++k) {
+        size_t v = g.base + (k >> 2) * sx + ((k >> 1) & 1) * sy + (k & 1);
+        gradDensity[v] += w[k] * g.gDensity;
+        for (int l = 0; l < N; ++l)
+          for (int ch = 0; ch < 3; ++ch) gradColor[v * S + 3 * l + ch] += w[k] * sh[l] * g.gColor[ch];
+      }
+    }
+  }
+  return sq / (3.0 * double(rays.size()));
+}
+
+}  // namespace inim

@@ -1,0 +1,56 @@
+#pragma once
+// Helpers shared by the command-line tests: files, data paths, and the bad-input check
+// (status 2, a message naming what is wrong, no output or temporary left behind).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+#include <string>
+
+#include "cli/run_cli.h"
+
+inline void writeText(const std::string& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+}
+
+inline std::string data(const std::string& rel) { return std::string(INIM_SOURCE_DATA_DIR) + "/" + rel; }
+
+// A small display: K x R EIs of n px (0.1 mm pixels), panel with a 3 px border.
+inline std::string smallDisplayJson(int K, int R, int n, double gap = 3.0, double pitch = 0.9, int panelW = 0,
+                             int panelH = 0) {
+  if (!panelW) panelW = K * n + 6;
+  if (!panelH) panelH = R * n + 6;
+  std::ostringstream s;
+  s << R"({"name": "small test display",
+  "panel": {"name": "test panel", "resolution_px": [)"
+    << panelW << ", " << panelH << R"(], "pixel_pitch_mm": 0.1,
+            "primaries": {"R": {"gaussian": {"mean_nm": 625, "fwhm_nm": 35}},
+                          "G": {"gaussian": {"mean_nm": 530, "fwhm_nm": 35}},
+                          "B": {"gaussian": {"mean_nm": 460, "fwhm_nm": 30}}},
+            "peak_luminance_cd_m2": 500},
+  "mla": {"name": "test mla", "pitch_mm": )"
+    << pitch << R"(, "focal_length_mm": 3.0, "substrate_thickness_mm": 1.0, "material": "PMMA"},
+  "generation_gap_mm": )"
+    << gap << R"(, "reconstruction_gap_mm": 3.5, "ei_px": )" << n << R"(, "ei_count": [)" << K << ", " << R << "]}";
+  return s.str();
+}
+
+// Runs `args` with `runner` (runInim, or a test's own binary) and expects a bad-input failure.
+template <class Runner>
+void expectBadInputWith(Runner runner, const std::string& args, std::initializer_list<std::string> needles,
+                        std::initializer_list<std::string> outputs) {
+  namespace fs = std::filesystem;
+  CliResult r = runner(args);
+  EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+  EXPECT_NE(r.output.find("inim: error:"), std::string::npos) << r.output;
+  for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "message lacks '" << n << "':\n" << r.output;
+  for (const auto& o : outputs) {
+    EXPECT_FALSE(fs::exists(o)) << o << " was left behind by: " << args;
+    if (!fs::exists(fs::path(o).parent_path())) continue;
+    for (const auto& e : fs::directory_iterator(fs::path(o).parent_path()))
+      EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << "temporary left: " << e.path();
+  }
+}

@@ -1,0 +1,82 @@
+// RadianceField: the Field adapter answers what the internal renderer renders, linearised
+// with the sRGB EOTF; empty intervals and misses return the (linear) background.
+#include <gtest/gtest.h>
+
+#include "core/rng.h"
+#include "radiance/radiance_field.h"
+#include "spectral/color.h"
+
+using namespace inim;
+
+namespace {
+VoxelGrid blobGrid(const Vec3& background) {
+  VoxelGrid g = VoxelGrid::create(Point3(-1.0f), Point3(1.0f), glm::ivec3(17), 1,
+                                  DensityActivation::Softplus, background, 0.01f);
+  // A dense ball of radius 0.5 with a view-dependent orange colour; empty elsewhere.
+  for (int x = 0; x < 17; ++x)
+    for (int y = 0; y < 17; ++y)
+      for (int z = 0; z < 17; ++z) {
+        Vec3 p = g.lo + Vec3(x, y, z) * g.cellSize();
+        size_t i = g.index(x, y, z);
+        g.density[i] = glm::length(p) < 0.5f ? 8.0f : -20.0f;
+        float* c = &g.color[i * g.colorStride()];
+        c[0] = 2.0f, c[1] = 0.5f, c[2] = -1.0f, c[3] = 0.3f * p.x, c[8] = 0.5f;
+      }
+  return g;
+}
+}  // namespace
+
+TEST(RadianceField, QueryMatchesRendererLinearised) {
+  VoxelGrid g = blobGrid(Vec3(1.0f));
+  VoxelGrid copy = g;
+  RadianceField field(std::move(copy));
+  EXPECT_EQ(field.encoding(), FieldEncoding::RGB);
+  EXPECT_EQ(field.colorSpace(), "lin_rec709");
+  Point3 lo, hi;
+  field.bounds(lo, hi);
+  EXPECT_EQ(lo, g.lo);
+  EXPECT_EQ(hi, g.hi);
+  VolumeRenderer renderer(g);
+  std::vector<FieldRay> rays;
+  Rng rng(3, 0);
+  for (int i = 0; i < 300; ++i) {
+    FieldRay r;
+    r.o = Point3(2.0f * rng.uniform() - 1.0f, 2.0f * rng.uniform() - 1.0f, 4.0f);
+    r.d = glm::normalize(Vec3(0.2f * (rng.uniform() - 0.5f), 0.2f * (rng.uniform() - 0.5f), -1.0f));
+    r.tNear = i % 3 == 0 ? 3.0f : 0.0f;
+    r.id = uint64_t(i);
+    rays.push_back(r);
+  }
+  std::vector<FieldSample> out(rays.size());
+  field.query(rays, {}, out, 42);
+  int hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    RadianceSample ref = renderer.render(RenderRay{rays[i].o, rays[i].d, rays[i].tNear, rays[i].tFar});
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(out[i].rgb[c], srgbDecode(ref.rgb[c]));
+    EXPECT_EQ(out[i].opacity, ref.opacity);
+    EXPECT_EQ(out[i].depth, ref.depth);
+    if (ref.opacity > 0.99f) {
+      ++hits;
+      EXPECT_GT(out[i].depth, 3.4f);  // the ball's front is at z <= 0.5, 3.5 from the origin
+      EXPECT_LT(out[i].depth, 4.1f);
+      EXPECT_LT(out[i].rgb.z, out[i].rgb.x);  // orange
+    }
+  }
+  EXPECT_GT(hits, 20);
+}
+
+TEST(RadianceField, EmptyIntervalsAndMissesSeeTheBackground) {
+  RadianceField field(blobGrid(Vec3(0.0f)));
+  std::vector<FieldRay> rays(4);
+  rays[0].o = Point3(0, 0, 4), rays[0].d = Vec3(0, 0, -1), rays[0].tNear = 5.0f, rays[0].tFar = 3.0f;  // tNear > tFar
+  rays[1].o = Point3(0, 3, 4), rays[1].d = Vec3(0, 0, -1);                                            // misses the box
+  rays[2].o = Point3(0.9f, 0.9f, 4), rays[2].d = Vec3(0, 0, -1);                                      // empty space
+  rays[3].o = Point3(0, 0, 4), rays[3].d = Vec3(0, 0, -1), rays[3].tFar = 2.0f;                      // stops before the box
+  std::vector<FieldSample> out(rays.size());
+  field.query(rays, {}, out, 0);
+  for (const FieldSample& s : out) {
+    EXPECT_EQ(s.rgb, Vec3(0.0f));
+    EXPECT_EQ(s.opacity, 0.0f);
+    EXPECT_EQ(s.depth, kInfinity);
+  }
+}

@@ -1,0 +1,120 @@
+// The march and its analytic gradients: central finite differences on a tiny grid, and the
+// edge cases (empty space, a ray missing the box, an empty interval, black background).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/rng.h"
+#include "radiance/trainer.h"
+#include "radiance/volume_renderer.h"
+
+using namespace inim;
+
+namespace {
+
+VoxelGrid randomGrid(int degree, uint64_t seed) {
+  VoxelGrid g = VoxelGrid::create(Point3(-1.0f), Point3(1.0f), glm::ivec3(5, 4, 6), degree,
+                                  DensityActivation::Softplus, Vec3(1.0f), 0.1f);
+  Rng rng(seed, 1);
+  for (float& d : g.density) d = -2.0f + 4.0f * rng.uniform();
+  for (float& c : g.color) c = -1.0f + 2.0f * rng.uniform();
+  return g;
+}
+
+TrainingRays randomRays(int n, uint64_t seed) {
+  TrainingRays rays;
+  Rng rng(seed, 2);
+  for (int i = 0; i < n; ++i) {
+    Vec3 o(3.0f * (rng.uniform() - 0.5f), 3.0f * (rng.uniform() - 0.5f), 3.0f);
+    Vec3 target(0.8f * (rng.uniform() - 0.5f), 0.8f * (rng.uniform() - 0.5f), 0.0f);
+    rays.origin.push_back(o);
+    rays.dir.push_back(target - o);
+    rays.rgb.push_back(Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
+  }
+  return rays;
+}
+
+void checkGradients(int degree) {
+  VoxelGrid g = randomGrid(degree, 7 + degree);
+  TrainingRays rays = randomRays(8, 3);
+  MarchSettings march;
+  march.minTransmittance = 0.0f;  // no termination: the loss is smooth in every parameter
+  std::vector<float> gd, gc, unused1, unused2;
+  lossAndGradient(g, rays, march, gd, gc);
+  float maxGrad = 0.0f;
+  for (float v : gd) maxGrad = std::max(maxGrad, std::abs(v));
+  for (float v : gc) maxGrad = std::max(maxGrad, std::abs(v));
+  ASSERT_GT(maxGrad, 1e-4f);
+  const float eps = 1e-2f;
+  auto numeric = [&](float& p) {
+    float keep = p;
+    p = keep + eps;
+    double lp = lossAndGradient(g, rays, march, unused1, unused2);
+    p = keep - eps;
+    double lm = lossAndGradient(g, rays, march, unused1, unused2);
+    p = keep;
+    return float((lp - lm) / (2.0 * eps));
+  };
+  int checked = 0;
+  for (size_t i = 0; i < g.density.size(); ++i) {
+    float n = numeric(g.density[i]);
+    EXPECT_NEAR(gd[i], n, 2e-3f * maxGrad + 2e-2f * std::abs(n)) << "density " << i;
+    ++checked;
+  }
+  for (size_t i = 0; i < g.color.size(); ++i) {
+    float n = numeric(g.color[i]);
+    EXPECT_NEAR(gc[i], n, 2e-3f * maxGrad + 2e-2f * std::abs(n)) << "colour " << i;
+    ++checked;
+  }
+  EXPECT_GT(checked, 100);
+}
+
+}  // namespace
+
+TEST(RayMarch, GradientsMatchFiniteDifferencesDegree0) { checkGradients(0); }
+TEST(RayMarch, GradientsMatchFiniteDifferencesDegree1) { checkGradients(1); }
+TEST(RayMarch, GradientsMatchFiniteDifferencesDegree2) { checkGradients(2); }
+
+TEST(RayMarch, EmptySpaceReturnsBackground) {
+  for (Vec3 bg : {Vec3(1.0f), Vec3(0.0f)}) {
+    VoxelGrid g = VoxelGrid::create(Point3(-1.0f), Point3(1.0f), glm::ivec3(16), 1,
+                                    DensityActivation::Softplus, bg, 0.01f);
+    std::fill(g.density.begin(), g.density.end(), -30.0f);  // empty everywhere
+    VolumeRenderer r(g);
+    RadianceSample res = r.render(RenderRay{Point3(0, 0, 3), Vec3(0, 0, -1)});
+    EXPECT_EQ(res.rgb, bg);
+    EXPECT_EQ(res.opacity, 0.0f);
+    EXPECT_EQ(res.depth, kInfinity);
+  }
+}
+
+TEST(RayMarch, MissEmptyIntervalAndDegenerateRays) {
+  VoxelGrid g = VoxelGrid::create(Point3(-1.0f), Point3(1.0f), glm::ivec3(16), 1,
+                                  DensityActivation::Softplus, Vec3(0.0f), 0.5f);
+  VolumeRenderer r(g);
+  // The grid is fog (opacity 0.5 per cell): a ray through it is nearly opaque.
+  RadianceSample through = r.render(RenderRay{Point3(0, 0, 3), Vec3(0, 0, -1)});
+  EXPECT_GT(through.opacity, 0.99f);
+  EXPECT_NEAR(through.rgb.x, 0.5f, 1e-3f);  // SH 0 -> sigmoid(0)
+  EXPECT_GT(through.depth, 2.0f);
+  EXPECT_LT(through.depth, 3.0f);
+  RadianceSample miss = r.render(RenderRay{Point3(0, 3, 3), Vec3(0, 0, -1)});
+  EXPECT_EQ(miss.opacity, 0.0f);
+  EXPECT_EQ(miss.depth, kInfinity);
+  RadianceSample empty = r.render(RenderRay{Point3(0, 0, 3), Vec3(0, 0, -1), 2.5f, 1.0f});
+  EXPECT_EQ(empty.opacity, 0.0f);
+  RadianceSample beforeBox = r.render(RenderRay{Point3(0, 0, 3), Vec3(0, 0, -1), 0.0f, 1.5f});
+  EXPECT_EQ(beforeBox.opacity, 0.0f);
+  RadianceSample zeroDir = r.render(RenderRay{Point3(0, 0, 3), Vec3(0.0f)});
+  EXPECT_EQ(zeroDir.opacity, 0.0f);
+  RadianceSample nanRay = r.render(RenderRay{Point3(NAN, 0, 3), Vec3(0, 0, -1)});
+  EXPECT_EQ(nanRay.opacity, 0.0f);
+  // A ray parallel to an axis along the box face is still well defined.
+  RadianceSample face = r.render(RenderRay{Point3(-1.0f, -1.0f, 3), Vec3(0, 0, -1)});
+  EXPECT_TRUE(std::isfinite(face.rgb.x));
+}
+
+TEST(RayMarch, PsnrHelper) {
+  std::vector<Vec3> a{Vec3(0.5f), Vec3(0.5f)}, b{Vec3(0.6f), Vec3(0.4f)};
+  EXPECT_NEAR(psnr(a, b), 20.0, 1e-4);
+}
