@@ -9,10 +9,12 @@
 //   eia-query/bare-embree  rtcIntersect1 over that EIA's 6.2M query rays
 //   eia-query/inim-field   the same query rays through Field::query
 //   view/E/spp:N           `inim view` of the default EIA (real MLA, real lens, 0 deg) at
-//                          --view-width, N spp (--view-spp), panel estimator E = point or
-//                          footprint (--view-estimators); the table after the run gives each
-//                          one's RMSE against view/reference (the footprint estimator at
-//                          --view-ref-spp, default 16x the largest N), relative to its mean
+//                          --view-width, N spp (--view-spp), panel estimator E = point,
+//                          footprint or aperture (--view-estimators); view/reference/E is the
+//                          same estimator at --view-ref-spp (default 16x the largest N, seed 2). The
+//                          table after the run gives each one's RMSE against its own reference
+//                          (noise) and against the point estimator's reference (noise + bias),
+//                          relative to the reference's mean, and the ratio of the means
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 #include <embree3/rtcore.h>
@@ -36,6 +38,7 @@
 #include "view/view_camera.h"
 #include "view/view_renderer.h"
 
+#include "cli/bench_radiance.h"
 #include "cli/commands.h"
 #include "core/parallel.h"
 #include "core/rng.h"
@@ -214,7 +217,7 @@ struct ViewContext {
   std::unique_ptr<DisplayModel> dm;
   CameraDescription desc;
   std::unique_ptr<CameraModel> camera;
-  std::map<std::pair<int, int>, Image> images;    // by (estimator, spp); estimator -1: the reference
+  std::map<std::pair<int, int>, Image> images;    // by (estimator, spp); estimator -1 - e: e's reference
   std::map<std::pair<int, int>, double> seconds;
   std::map<std::pair<int, int>, double> rssMiB;   // peak RSS of the process after the run
 };
@@ -243,14 +246,17 @@ ViewContext& builtViewContext() {
   return v;
 }
 
-// Args: spp, estimator (int(PanelEstimator); -1: the reference, footprint at refSpp).
+// Args: spp, estimator (int(PanelEstimator); -1 - e: the reference of estimator e, at refSpp).
 void benchView(benchmark::State& state) {
   ViewContext& v = builtViewContext();
   ViewSettings s;
   s.spp = int(state.range(0));
   const int est = int(state.range(1));
-  s.panelEstimator = est < 0 ? PanelEstimator::Footprint : PanelEstimator(est);
+  s.panelEstimator = est < 0 ? PanelEstimator(-1 - est) : PanelEstimator(est);
   s.progress = false;
+  // References use another seed: the same seed would share their first samples (the same
+  // Sobol points, the same Fresnel choices) with the runs they are compared with.
+  if (est < 0) s.seed = 2;
   const std::pair<int, int> key(est, s.spp);
   for (auto _ : state) {
     ViewResult r = renderView(*v.camera, v.desc.sensor, *v.dm->mla, *v.dm->panel, v.dm->area, s);
@@ -304,8 +310,9 @@ void addBenchCommand(CLI::App& app) {
     double minTime = 0.5;
     int viewWidth = 648;
     std::vector<int> viewSpp = {1, 4, 16};
-    std::vector<std::string> viewEstimators = {"point", "footprint"};
+    std::vector<std::string> viewEstimators = {"point", "footprint", "aperture"};
     int viewRefSpp = 0;
+    RadianceBenchOptions radiance;
     RunOptions run;
   };
   auto o = std::make_shared<Opts>();
@@ -317,13 +324,15 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--view-spp", o->viewSpp, "Samples per pixel of the view/ benchmarks")
       ->delimiter(',')->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--view-estimators", o->viewEstimators, "Panel estimators of the view/ benchmarks")
-      ->delimiter(',')->check(CLI::IsMember({"point", "footprint"}))->capture_default_str();
+      ->delimiter(',')->check(CLI::IsMember({"point", "footprint", "aperture"}))->capture_default_str();
   cmd->add_option("--view-ref-spp", o->viewRefSpp,
                   "spp of view/reference (footprint estimator); 0: 16x the largest --view-spp")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
+  addRadianceBenchOptions(cmd, o->radiance);
   addRunOptions(cmd, o->run);
   cmd->callback([o]() {
     ThreadLimit threads(o->run.threads);
+    registerRadianceBenchmarks(o->radiance);
     // Debian builds libbenchmark without NDEBUG, so it prints a DEBUG warning; inim itself
     // is a Release build (see the header line below).
     auto reg = [&](const char* name, void (*fn)(benchmark::State&), bool once) {
@@ -344,7 +353,7 @@ void addBenchCommand(CLI::App& app) {
       v.spps = o->viewSpp;
       v.estimators.clear();
       for (const auto& e : o->viewEstimators)
-        v.estimators.push_back(e == "point" ? PanelEstimator::PointSample : PanelEstimator::Footprint);
+        parsePanelEstimator(e, v.estimators.emplace_back());
       const int maxSpp = *std::max_element(v.spps.begin(), v.spps.end());
       v.refSpp = o->viewRefSpp > 0 ? o->viewRefSpp : 16 * maxSpp;
       for (PanelEstimator e : v.estimators)
@@ -353,8 +362,9 @@ void addBenchCommand(CLI::App& app) {
               ("view/" + std::string(panelEstimatorName(e)) + "/spp:" + std::to_string(spp)).c_str(), benchView)
               ->Args({spp, int(e)})->Iterations(1)->UseRealTime()
               ->Unit(benchmark::kMillisecond);
-      benchmark::RegisterBenchmark("view/reference", benchView)
-          ->Args({v.refSpp, -1})->Iterations(1)->UseRealTime()->Unit(benchmark::kMillisecond);
+      for (PanelEstimator e : v.estimators)
+        benchmark::RegisterBenchmark(("view/reference/" + std::string(panelEstimatorName(e))).c_str(), benchView)
+            ->Args({v.refSpp, -1 - int(e)})->Iterations(1)->UseRealTime()->Unit(benchmark::kMillisecond);
     }
     std::string filterArg = "--benchmark_filter=" + o->filter;
     std::vector<char*> args = {const_cast<char*>("inim bench"), filterArg.data()};
@@ -376,20 +386,41 @@ void addBenchCommand(CLI::App& app) {
     ratio("query/inim-field", "query/bare-embree");
     ratio("eia-query/inim-field", "eia-query/bare-embree");
     ratio("eia/paper-fig7-default-display-1spp", "eia-query/bare-embree");
+    printRadianceBenchResults();
     ViewContext& v = viewContext();
-    const std::pair<int, int> refKey(-1, v.refSpp);
-    if (v.images.count(refKey)) {
+    auto meanOf = [](const Image& img) {
+      double m = 0.0;
+      for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+          for (int c = 0; c < 3; ++c) m += img.at(x, y, c);
+      return m / (3.0 * img.width * img.height);
+    };
+    const std::pair<int, int> pointRefKey(-1 - int(PanelEstimator::PointSample), v.refSpp);
+    const Image* pointRef = v.images.count(pointRefKey) ? &v.images[pointRefKey] : nullptr;
+    bool header = false;
+    for (PanelEstimator e : v.estimators) {
+      const std::pair<int, int> refKey(-1 - int(e), v.refSpp);
+      if (!v.images.count(refKey)) continue;
       const Image& ref = v.images[refKey];
-      std::printf("\nview (real MLA, real lens, 0 deg) at %d x %d: time and RMSE against the footprint estimator at "
-                  "%d spp (%.1f s), relative to the mean\n", ref.width, ref.height, v.refSpp, v.seconds[refKey]);
-      std::printf("  %-10s %6s %10s %12s %14s\n", "estimator", "spp", "seconds", "RMSE/mean", "peak RSS MiB");
-      for (PanelEstimator e : v.estimators)
-        for (int spp : v.spps) {
-          const std::pair<int, int> key(int(e), spp);
-          if (v.images.count(key))
-            std::printf("  %-10s %6d %10.2f %11.2f%% %14.0f\n", panelEstimatorName(e), spp, v.seconds[key],
-                        100.0 * relativeRmse(v.images[key], ref), v.rssMiB[key]);
-        }
+      if (!header) {
+        std::printf("\nview (real MLA, real lens, 0 deg) at %d x %d: time, RMSE relative to the mean against the same "
+                    "estimator at %d spp (own ref) and against the point estimator at %d spp (point ref), mean / "
+                    "point ref's mean\n", ref.width, ref.height, v.refSpp, v.refSpp);
+        std::printf("  %-10s %6s %10s %12s %14s %12s %14s\n", "estimator", "spp", "seconds", "RMSE own ref",
+                    "RMSE point ref", "mean ratio", "peak RSS MiB");
+        header = true;
+      }
+      auto row = [&](int spp, const Image& img, double sec, double rss) {
+        const double vsPoint = pointRef ? 100.0 * relativeRmse(img, *pointRef) : NAN;
+        const double ratio = pointRef ? meanOf(img) / meanOf(*pointRef) : NAN;
+        std::printf("  %-10s %6d %10.2f %11.2f%% %13.2f%% %12.4f %14.0f\n", panelEstimatorName(e), spp, sec,
+                    100.0 * relativeRmse(img, ref), vsPoint, ratio, rss);
+      };
+      for (int spp : v.spps) {
+        const std::pair<int, int> key(int(e), spp);
+        if (v.images.count(key)) row(spp, v.images[key], v.seconds[key], v.rssMiB[key]);
+      }
+      row(v.refSpp, ref, v.seconds[refKey], v.rssMiB[refKey]);
     }
   });
 }

@@ -20,7 +20,6 @@
 #include "dataset/dataset.h"
 #include "radiance/grid_io.h"
 #include "radiance/trainer.h"
-#include "radiance/volume_renderer.h"
 
 namespace fs = std::filesystem;
 
@@ -72,46 +71,6 @@ std::vector<int> parseIntList(const std::string& s, const std::string& key) {
     pos = comma + 1;
   }
   return v;
-}
-
-struct ViewScore {
-  int frame = 0;
-  std::string image;
-  double psnr = 0, ssim = 0;
-};
-
-// Renders the frames through the model; scores each against its photo (sRGB values, peak 1).
-std::vector<ViewScore> evaluate(const VoxelGrid& grid, const Dataset& data, const std::vector<int>& frames,
-                                std::vector<Image>* renders) {
-  VolumeRenderer renderer(grid);
-  std::vector<ViewScore> scores;
-  for (int i : frames) {
-    const DatasetFrame& f = data.frames[size_t(i)];
-    const int w = f.image.width, h = f.image.height;
-    std::vector<RenderRay> rays(size_t(w) * size_t(h));
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        glm::dvec3 o, d;
-        frameRay(f, x + 0.5, y + 0.5, o, d);
-        RenderRay& r = rays[size_t(y) * size_t(w) + size_t(x)];
-        r.o = Point3(o), r.d = Vec3(glm::normalize(d));
-        r.tNear = float(data.nearPlane), r.tFar = float(data.farPlane);
-      }
-    std::vector<RadianceSample> out(rays.size());
-    renderer.render(rays, out);
-    Image img(w, h, {"R", "G", "B"});
-    for (size_t p = 0; p < out.size(); ++p)
-      for (int c = 0; c < 3; ++c) img.data[p * 3 + size_t(c)] = std::clamp(out[p].rgb[c], 0.0f, 1.0f);
-    Image truth = colorImage(f.image);
-    ViewScore s;
-    s.frame = i;
-    s.image = f.imagePath;
-    s.psnr = psnr(img, truth);
-    s.ssim = ssim(img, truth).value;
-    scores.push_back(s);
-    if (renders) renders->push_back(std::move(img));
-  }
-  return scores;
 }
 
 double mean(const std::vector<ViewScore>& v, double ViewScore::*m) {

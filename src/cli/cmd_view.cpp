@@ -148,6 +148,7 @@ void addViewCommand(CLI::App& app) {
   struct Opts {
     CameraPoseOpts cam;
     std::string display, eia, mla = "real", spectral = "primaries", layout;
+    std::string estimator = panelEstimatorName(ViewSettings{}.panelEstimator);
     double gapMm = 0.0, background = 0.0, cosN = 0.0, viewingDistanceMm = 0.0;
     bool noCoverGlass = false, relative = false, noCull = false;
   };
@@ -171,6 +172,11 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option("--spectral", o->spectral, "Wavelength sampling: primaries (importance-sampled per panel primary) "
                                              "or visible (4-wavelength packets)")
       ->check(CLI::IsMember({"primaries", "visible"}))
+      ->capture_default_str();
+  cmd->add_option("--estimator", o->estimator,
+                  "Panel estimator: point (subpixel under each ray), footprint (box average over the sample's "
+                  "share of the pixel footprint) or aperture (camera aperture integrated by quadrature)")
+      ->check(CLI::IsMember({"point", "footprint", "aperture"}))
       ->capture_default_str();
   cmd->add_option("--background", o->background, "Luminance of the (D65 grey) background around the display, in the "
                                                   "image's units (default 0: black)");
@@ -222,6 +228,7 @@ void addViewCommand(CLI::App& app) {
     vs.backgroundY = o->background;
     vs.cullTiles = !o->noCull;
     vs.spectral = o->spectral == "visible" ? SpectralSampling::Visible : SpectralSampling::Primaries;
+    parsePanelEstimator(o->estimator, vs.panelEstimator);
 
     if (!o->cam.quiet) {
       std::printf("display:     %s (g = %s mm, %s MLA%s)\n", d.name.c_str(), num(g).c_str(),
@@ -251,6 +258,13 @@ void addViewCommand(CLI::App& app) {
                   (unsigned long long)r.stats.tracedRays, (unsigned long long)r.stats.displayRays,
                   (unsigned long long)r.stats.panelRays, (unsigned long long)r.stats.emittingRays,
                   (unsigned long long)r.stats.culledPixels);
+      if (vs.panelEstimator == PanelEstimator::Aperture)
+        std::printf("estimator:   aperture: %llu rays integrated over the aperture, %llu fell back to sampling it, "
+                    "%llu table/Jacobian rays\n",
+                    (unsigned long long)r.stats.apertureSamples, (unsigned long long)r.stats.apertureFallbacks,
+                    (unsigned long long)r.stats.apertureRays);
+      else
+        std::printf("estimator:   %s\n", panelEstimatorName(vs.panelEstimator));
       std::printf("exposure:    %s%s\n", num(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
       std::printf("wrote:       %s, %s\n", o->cam.out.c_str(), cs.png.c_str());
     }

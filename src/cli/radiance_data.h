@@ -20,6 +20,15 @@ TrainingRays datasetRays(const Dataset& data, const std::vector<int>& frames);
 // "scene": ...}. An inim capture is in mm (placement scale 1); any other dataset is in its
 // own units, placed at the paper's 0.0075 field units per mm unless the user says otherwise.
 std::string modelMetadata(const Dataset& data);
+
+// A model's render of dataset frames, scored against the photos (sRGB values, peak 1).
+struct ViewScore {
+  int frame = 0;
+  std::string image;
+  double psnr = 0, ssim = 0;
+};
+std::vector<ViewScore> evaluate(const VoxelGrid& grid, const Dataset& data, const std::vector<int>& frames,
+                                std::vector<Image>* renders);
 Placement defaultPlacementFor(const std::string& metadata);
 
 }  // namespace inim::cli

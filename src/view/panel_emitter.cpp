@@ -122,6 +122,7 @@ PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& i
     }
     p.pixU = std::clamp(int(std::floor(cx)), 0, tileW_ - 1);
     p.pixV = std::clamp(int(std::floor(cy)), 0, tileH_ - 1);
+    if (p.channel >= 0 && p.channel < kNumPrimaries) channelPolys_[size_t(p.channel)].push_back(int(polys_.size()));
     polys_.push_back(std::move(p));
   }
 
@@ -157,6 +158,21 @@ PanelEmission PanelEmitter::lookupPx(double u, double v) const {
     return {p.channel, drive_[(size_t(row) * panelW_ + col) * 3 + size_t(p.channel)]};
   }
   return {};
+}
+
+float PanelEmitter::channelDrivePx(int c, double u, double v) const {
+  if (!(u >= 0.0 && v >= 0.0 && u < panelW_ && v < panelH_)) return 0.0f;
+  const double tu = std::floor(u / tileW_), tv = std::floor(v / tileH_);
+  const float fu = float(u - tu * tileW_), fv = float(v - tv * tileH_);
+  for (int i : channelPolys_[size_t(c)]) {
+    const Poly& p = polys_[size_t(i)];
+    if (fu < p.u0 || fu >= p.u1 || fv < p.v0 || fv >= p.v1) continue;
+    if (!p.rect && !insidePolygon(p.pts, fu, fv)) continue;
+    const int col = int(tu) * tileW_ + p.pixU, row = int(tv) * tileH_ + p.pixV;
+    if (col >= panelW_ || row >= panelH_) return 0.0f;
+    return drive_[(size_t(row) * panelW_ + col) * 3 + size_t(c)];
+  }
+  return 0.0f;
 }
 
 float PanelEmitter::angular(float cosTheta) const {

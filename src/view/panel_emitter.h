@@ -106,6 +106,11 @@ class PanelEmitter {
   // polygon). The black matrix and the area off the panel count as 0. A box of zero area is a
   // point lookup (the channel of lookupPx gets its weight, the others 0).
   std::array<float, kNumPrimaries> boxAveragePx(double u0, double v0, double u1, double v1) const;
+  // The drive value of channel c at a point (panel pixel coordinates): lookupPx(u, v).weight
+  // when lookupPx(u, v).channel == c, else 0 (up to points exactly on a rectangle's edge).
+  // Tests only channel c's subpixels, axis-aligned rectangles by their bounds: the cheap
+  // lookup of the Aperture estimator's quadrature (view_renderer.h).
+  float channelDrivePx(int c, double u, double v) const;
 
   // Radiance spectrum of a channel's subpixel at full drive on axis: K_c L0 primary_c(lambda).
   float channelSpectrum(int channel, float lambdaNm) const;
@@ -142,6 +147,7 @@ class PanelEmitter {
   double pitch_ = 0.0, uOff_ = 0.0, vOff_ = 0.0, gap_ = 0.0;
   std::vector<float> drive_;  // panelW x panelH x 3, clamped to [0, 1]
   std::vector<Poly> polys_;
+  std::array<std::vector<int>, kNumPrimaries> channelPolys_;  // indices into polys_ per channel
   std::array<SpectrumPtr, kNumPrimaries> primary_;
   std::array<double, kNumPrimaries> areaFactor_{};
   double l0_ = 1.0;

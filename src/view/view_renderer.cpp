@@ -5,13 +5,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/rng.h"
+#include "mla/real_mla.h"
 #include "spectral/sampled.h"
+#include "view/aperture_kernel.h"
 #include "view/qmc.h"
 
 namespace inim {
@@ -20,7 +23,18 @@ const char* spectralSamplingName(SpectralSampling s) {
   return s == SpectralSampling::Primaries ? "primaries" : "visible";
 }
 
-const char* panelEstimatorName(PanelEstimator e) { return e == PanelEstimator::PointSample ? "point" : "footprint"; }
+const char* panelEstimatorName(PanelEstimator e) {
+  return e == PanelEstimator::PointSample ? "point" : e == PanelEstimator::Footprint ? "footprint" : "aperture";
+}
+
+bool parsePanelEstimator(const std::string& name, PanelEstimator& out) {
+  for (PanelEstimator e : {PanelEstimator::PointSample, PanelEstimator::Footprint, PanelEstimator::Aperture})
+    if (name == panelEstimatorName(e)) {
+      out = e;
+      return true;
+    }
+  return false;
+}
 
 DisplayArea lensletArrayArea(const EiLayout& L, double P) {
   DisplayArea a;
@@ -174,6 +188,36 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
   // Box half-width = 0.5 x scale x (row norm of the Jacobian) / sqrt(spp): see the header.
   const double boxScale = 0.5 * s.footprintScale / std::sqrt(double(spp));
 
+  // Aperture: one quadrature table of the camera aperture per block of pixels (built at the
+  // block's centre pixel, reference wavelength), and the MLA traced with deterministic Fresnel.
+  const bool aperture = s.panelEstimator == PanelEstimator::Aperture;
+  std::unique_ptr<ApertureSpace> space;
+  std::vector<ApertureKernel> kernels;
+  // Auto block size: ~0.1 mm of the sensor (the pupil's shape, vignetting, changes little
+  // over that), at most 32 pixels.
+  const int kb = s.apertureBlock > 0 ? s.apertureBlock
+                                     : std::clamp(int(std::lround(0.1 / std::max(1e-9, camera.sensor().pitchMm))), 1, 32);
+  const int kbW = (W + kb - 1) / kb, kbH = (H + kb - 1) / kb;
+  std::atomic<uint64_t> nApRays{0}, nApSamples{0}, nApFallbacks{0};
+  if (aperture) {
+    if (s.apertureGrid < 2 || s.apertureGrid > 64)
+      throw InputError("", "apertureGrid", std::to_string(s.apertureGrid), "a grid size in 2..64");
+    space = std::make_unique<ApertureSpace>(camera);
+    kernels.resize(size_t(kbW) * size_t(kbH));
+    parallelForRange(int64_t(kernels.size()), [&](int64_t b0, int64_t b1) {
+      uint64_t rays = 0;
+      for (int64_t b = b0; b < b1; ++b) {
+        const int bx = int(b % kbW), by = int(b / kbW);
+        const float cx = 0.5f * float(bx * kb + std::min(W, (bx + 1) * kb));
+        const float cy = 0.5f * float(by * kb + std::min(H, (by + 1) * kb));
+        kernels[size_t(b)] = buildApertureKernel(*space, Vec2(cx, cy), lambdaRef, s.apertureGrid, rays, frontZ);
+      }
+      nApRays += rays;
+    }, nullptr, 1);
+  }
+  const RealMla* realMla = dynamic_cast<const RealMla*>(&mla);
+  const bool weightedFresnel = realMla && realMla->options().fresnel == FresnelMode::Stochastic;
+
   Image img(W, H, {"R", "G", "B"});
   std::atomic<uint64_t> nCam{0}, nDisp{0}, nPanel{0}, nEmit{0}, nCulled{0}, nProbe{0}, nProbeFail{0};
   const bool cull = s.cullTiles && bg == 0.0;
@@ -185,6 +229,7 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
       return;  // the image is already 0 there
     }
     uint64_t cCam = 0, cDisp = 0, cPanel = 0, cEmit = 0, cProbe = 0, cProbeFail = 0;
+    uint64_t cApRays = 0, cApSamples = 0, cApFallbacks = 0;
     // Footprint: the half-widths (panel pixels) of this pixel's boxes.
     double hu = 0.0, hv = 0.0;
     // One traced ray from the camera to the panel at a wavelength. `em` gets the emission per
@@ -268,6 +313,142 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
       }
       return true;
     };
+    // Aperture: where the camera ray `r` (weight w) lands on the emitter, through the MLA with
+    // Fresnel as a transmittance weight (no random reflection).
+    struct Landing {
+      Vec2d uv{0.0};
+      float T = 0.0f, factor = 0.0f;
+      int k = -1, l = -1;
+    };
+    auto landRay = [&](const Ray& r, float lambda, Landing& L) -> bool {
+      if (!(r.d.z < 0.0f) || !(r.o.z > frontZ)) return false;
+      const Point3 p = r.o + ((frontZ - r.o.z) / r.d.z) * r.d;
+      if (!area.contains(p.x, p.y)) return false;
+      PanelArrival arr;
+      if (weightedFresnel) {
+        MlaExit ex;
+        if (!realMla->trace(Point3d(p), Vec3d(r.d), double(lambda), FresnelMode::Weighted, nullptr, ex)) return false;
+        if (!(ex.d.z < 0.0)) return false;
+        const double zp = realMla->panelZ();
+        const double t = (zp - ex.p.z) / ex.d.z;
+        if (!(t >= 0.0)) return false;
+        arr.p = Point3(float(ex.p.x + t * ex.d.x), float(ex.p.y + t * ex.d.y), float(zp));
+        arr.d = Vec3(ex.d);
+        arr.throughput = float(ex.throughput);
+        arr.lensletK = ex.capK;
+        arr.lensletL = ex.capL;
+      } else {
+        Rng rng(0x5EEDull, 0);  // deterministic models ignore it
+        if (!mla.traceToPanel(Ray{p, r.d, 0.0f, kInfinity}, lambda, rng, arr)) return false;
+      }
+      if (!panel.emissionPointPx(arr.p, arr.d, lambda, L.uv, L.factor)) return false;
+      L.T = arr.throughput;
+      L.k = arr.lensletK;
+      L.l = arr.lensletL;
+      return true;
+    };
+    // The MLA alone: a ray crossing the front plane at h with slope sl (d.x / -d.z, d.y / -d.z).
+    auto landMla = [&](const Vec2d& h, const Vec2d& sl, float lambda, Landing& L) -> bool {
+      ++cApRays;
+      Ray r;
+      r.o = Point3(float(h.x), float(h.y), frontZ);
+      r.d = glm::normalize(Vec3(float(sl.x), float(sl.y), -1.0f));
+      return landRay(Ray{r.o + 1e-3f * (-r.d), r.d, 0.0f, kInfinity}, lambda, L);
+    };
+    // Per pixel and lenslet: the MLA's Jacobians of the landing point (panel px) with respect to
+    // the front-plane crossing (A) and the slope (B) of the pixel's centre ray, by central
+    // differences at the kernel's rms spread (then a quarter of it), at the reference
+    // wavelength; every probe must land through the centre ray's lenslet. The kernel's points
+    // map to panel offsets A dh + B ds (stored), its sub-cell shift to (A shiftH + B shiftS).
+    struct LensletJ {
+      int k = -1, l = -1;
+      bool ok = false;
+      double shift[2][2] = {};
+      std::vector<float> off;  // 2 per kernel point
+    };
+    auto measureJ = [&](Vec2 pix, const ApertureKernel& K, LensletJ& out) -> bool {
+      ++cApRays;
+      Ray r;
+      if (!(space->ray(pix, K.centre, lambdaRef, r) > 0.0f)) return false;
+      Landing c;
+      if (!landRay(r, lambdaRef, c)) return false;
+      const Point3 p = r.o + ((frontZ - r.o.z) / r.d.z) * r.d;
+      const Vec2d h0(p.x, p.y), s0(r.d.x / -double(r.d.z), r.d.y / -double(r.d.z));
+      out.k = c.k;
+      out.l = c.l;
+      out.ok = false;
+      double A[2][2], B[2][2];
+      for (double f : {1.0, 0.25}) {
+        const double eh = f * std::max(K.rmsH, 0.002), es = f * std::max(K.rmsS, 1e-4);
+        bool good = true;
+        for (int m = 0; m < 4 && good; ++m) {
+          const int ax = m & 1;
+          const bool slope = m >= 2;
+          const double e = slope ? es : eh;
+          const Vec2d dv = ax == 0 ? Vec2d(e, 0.0) : Vec2d(0.0, e);
+          Landing lp, lm;
+          const bool okp = slope ? landMla(h0, s0 + dv, lambdaRef, lp) : landMla(h0 + dv, s0, lambdaRef, lp);
+          const bool okm = slope ? landMla(h0, s0 - dv, lambdaRef, lm) : landMla(h0 - dv, s0, lambdaRef, lm);
+          if (!okp || !okm || lp.k != c.k || lp.l != c.l || lm.k != c.k || lm.l != c.l) {
+            good = false;
+            break;
+          }
+          double(&M)[2][2] = slope ? B : A;
+          M[0][ax] = (lp.uv.x - lm.uv.x) / (2.0 * e);
+          M[1][ax] = (lp.uv.y - lm.uv.y) / (2.0 * e);
+        }
+        if (good) {
+          out.ok = true;
+          break;
+        }
+      }
+      if (!out.ok) return true;
+      out.off.resize(2 * K.points.size());
+      for (size_t i = 0; i < K.points.size(); ++i) {
+        const auto& q = K.points[i];
+        out.off[2 * i] = float(A[0][0] * q.dhx + A[0][1] * q.dhy + B[0][0] * q.dsx + B[0][1] * q.dsy);
+        out.off[2 * i + 1] = float(A[1][0] * q.dhx + A[1][1] * q.dhy + B[1][0] * q.dsx + B[1][1] * q.dsy);
+      }
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+          out.shift[i][j] = A[i][0] * K.shiftH[0][j] + A[i][1] * K.shiftH[1][j] + B[i][0] * K.shiftS[0][j] +
+                            B[i][1] * K.shiftS[1][j];
+      return true;
+    };
+    // The quadrature: sum over the kernel's points of weight x drive at the landing point
+    // uv0 + offset_i + shift (sx, sy), per channel of `mask`.
+    auto kernelSum = [&](const ApertureKernel& K, const LensletJ& lj, const Vec2d& uv0, double sx, double sy, int mask,
+                         std::array<float, kNumPrimaries>& em) {
+      double sum[kNumPrimaries] = {0.0, 0.0, 0.0};
+      const double bu = uv0.x + lj.shift[0][0] * sx + lj.shift[0][1] * sy;
+      const double bv = uv0.y + lj.shift[1][0] * sx + lj.shift[1][1] * sy;
+      const size_t n = K.points.size();
+      const float* off = lj.off.data();
+      if (mask == 7) {
+        for (size_t i = 0; i < n; ++i) {
+          const PanelEmission e = panel.lookupPx(bu + off[2 * i], bv + off[2 * i + 1]);
+          if (e.channel >= 0) sum[e.channel] += double(K.points[i].w) * e.weight;
+        }
+      } else {
+        for (int c = 0; c < kNumPrimaries; ++c) {
+          if (!(mask & (1 << c))) continue;
+          for (size_t i = 0; i < n; ++i)
+            sum[c] += double(K.points[i].w) * panel.channelDrivePx(c, bu + off[2 * i], bv + off[2 * i + 1]);
+        }
+      }
+      for (int c = 0; c < kNumPrimaries; ++c) em[size_t(c)] = float(sum[c]);
+    };
+    // The tile's MLA Jacobians, one per (kernel block, lenslet): measured at the first sample
+    // that lands through that lenslet (one thread renders a tile in a fixed order, so the cache
+    // is deterministic); a failed measurement (probes straddling a lenslet border) is retried at
+    // the next sample through that lenslet, and the failed sample falls back.
+    struct JEntry {
+      size_t block;
+      int k, l, tries;
+      LensletJ j;
+    };
+    std::vector<JEntry> jCache;
+
     bool haveLastJ = false;  // the tile's last measured Jacobian, for pixels whose probe fails
     double lastJ[2][4] = {};
 
@@ -295,8 +476,135 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
             if (!std::isfinite(hu) || !std::isfinite(hv)) hu = hv = 0.0;
           }
         }
+        const ApertureKernel* K = nullptr;
+        size_t kBlock = 0;
+        if (aperture) {
+          kBlock = size_t(y / kb) * size_t(kbW) + size_t(x / kb);
+          if (kernels[kBlock].valid()) K = &kernels[kBlock];
+        }
         Vec3d acc(0.0);
-        for (int si = 0; si < spp; ++si) {
+        // Adds a traced ray's emission (em per channel, times k = camera weight x throughput) at
+        // wavelength lambda (pdf) of slot j to acc, as the point estimator does.
+        auto accumulate = [&](const std::array<float, kNumPrimaries>& em, double k, float lambda, float pdf, int j,
+                              float ul) {
+          for (int c = 0; c < kNumPrimaries; ++c) {
+            if (em[size_t(c)] == 0.0f) continue;
+            if (!dispersive) {
+              const double kc = k * em[size_t(c)];
+              if (primaries) {
+                acc += kc * channelRgb[c];
+              } else {
+                const SampledWavelengths wl = SampledWavelengths::sampleVisible(ul);
+                Vec3d sum(0.0);
+                for (int i = 0; i < kNumWavelengths; ++i)
+                  if (wl.pdf()[i] > 0.0f)
+                    sum += sensor.response(wl[i]) * (double(panel.channelSpectrum(c, wl[i])) / wl.pdf()[i]);
+                acc += kc * sum / double(kNumWavelengths);
+              }
+            } else {
+              if (primaries && c != j) continue;
+              const double kc = k * em[size_t(c)] * panel.channelSpectrum(c, lambda) / pdf;
+              acc += sensor.response(lambda) * (primaries ? kc : kc / double(kNumWavelengths));
+            }
+          }
+        };
+        for (int si = 0; aperture && si < spp; ++si) {
+          const uint32_t idx = uint32_t(si);
+          const Vec2 pix(float(x) + SobolSequence::sample(idx, 0, sc[0]), float(y) + SobolSequence::sample(idx, 1, sc[1]));
+          const Vec2 lens(SobolSequence::sample(idx, 2, sc[2]), SobolSequence::sample(idx, 3, sc[3]));
+          const float ul = SobolSequence::sample(idx, 4, sc[4]);
+          Rng rng = Rng::forSample(s.seed ^ kMlaSalt, pixel, uint64_t(si));
+          // The centre ray (shared by the wavelengths when the camera is not dispersive) and the
+          // aperture-sampled fallback ray (made on first need).
+          Ray rayC, rayU;
+          float wC = 0.0f, wU = 0.0f;
+          bool haveU = false;
+          if (K && !camDisp) {
+            wC = space->ray(pix, K->centre, lambdaRef, rayC);
+          }
+          SampledWavelengths wl;
+          if (dispersive && !primaries) wl = SampledWavelengths::sampleVisible(ul);
+          const int slots = dispersive ? raysPerSample : 1;
+          for (int j = 0; j < slots; ++j) {
+            float lambda = lambdaRef, pdf = 1.0f;
+            if (dispersive) {
+              if (primaries) {
+                lambda = samplers[size_t(j)].sample(ul, pdf);
+              } else {
+                lambda = wl[j];
+                pdf = wl.pdf()[j];
+              }
+              if (!(pdf > 0.0f)) continue;
+            }
+            const int mask = dispersive && primaries ? (1 << j) : 7;
+            std::array<float, kNumPrimaries> em{};
+            // Aperture quadrature: the centre ray lands in a lenslet whose Jacobian is known.
+            bool background = false;
+            if (K) {
+              Ray r = rayC;
+              float w = wC;
+              if (camDisp) {
+                w = space->ray(pix, K->centre, lambda, r);
+              }
+              Landing L;
+              if (w > 0.0f) {
+                // A centre ray that misses the display is not a failure of the quadrature: the
+                // sampled aperture below handles the display's edge.
+                const bool down = r.d.z < 0.0f && r.o.z > frontZ;
+                const Point3 p = down ? r.o + ((frontZ - r.o.z) / r.d.z) * r.d : r.o;
+                background = !down || !area.contains(p.x, p.y);
+              }
+              if (w > 0.0f && !background && landRay(r, lambda, L)) {
+                const LensletJ* lj = nullptr;
+                JEntry* entry = nullptr;
+                for (auto& e : jCache)
+                  if (e.block == kBlock && e.k == L.k && e.l == L.l) entry = &e;
+                if (!entry) {
+                  jCache.push_back({kBlock, L.k, L.l, 0, {}});
+                  entry = &jCache.back();
+                }
+                if (!entry->j.ok) {
+                  ++entry->tries;
+                  LensletJ m;
+                  if (measureJ(pix, *K, m) && m.ok && m.k == L.k && m.l == L.l) entry->j = std::move(m);
+                }
+                if (entry->j.ok) lj = &entry->j;
+                if (lj && lj->ok) {
+                  ++cCam;
+                  ++cDisp;
+                  ++cPanel;
+                  ++cApSamples;
+                  kernelSum(*K, *lj, L.uv, (double(lens.x) - 0.5) * K->cellW, (double(lens.y) - 0.5) * K->cellH, mask, em);
+                  if (em[0] != 0.0f || em[1] != 0.0f || em[2] != 0.0f) {
+                    ++cEmit;
+                    accumulate(em, double(w) / K->centreWeight * L.T * L.factor, lambda, pdf, j, ul);
+                  }
+                  continue;
+                }
+              }
+            }
+            // Fallback: sample the aperture (the point estimator, stochastic Fresnel).
+            if (K && !background) ++cApFallbacks;
+            Ray r;
+            float w;
+            if (!camDisp) {
+              if (!haveU) {
+                wU = camera.generateRay(pix, lens, lambdaRef, rayU);
+                haveU = true;
+              }
+              r = rayU;
+              w = wU;
+            } else {
+              w = camera.generateRay(pix, lens, lambda, r);
+            }
+            if (!(w > 0.0f)) continue;
+            float T = 1.0f;
+            const Outcome o = trace(r, lambda, rng, em, T);
+            if (o == Outcome::Background) acc += double(w) * bg / double(slots);
+            else if (o == Outcome::Panel) accumulate(em, double(w) * T, lambda, pdf, j, ul);
+          }
+        }
+        for (int si = 0; !aperture && si < spp; ++si) {
           const uint32_t idx = uint32_t(si);
           const Vec2 pix(float(x) + SobolSequence::sample(idx, 0, sc[0]), float(y) + SobolSequence::sample(idx, 1, sc[1]));
           const Vec2 lens(SobolSequence::sample(idx, 2, sc[2]), SobolSequence::sample(idx, 3, sc[3]));
@@ -377,6 +685,9 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
     nEmit += cEmit;
     nProbe += cProbe;
     nProbeFail += cProbeFail;
+    nApRays += cApRays;
+    nApSamples += cApSamples;
+    nApFallbacks += cApFallbacks;
   }, &bar, 16);
   bar.finish();
 
@@ -389,6 +700,9 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
   r.stats.culledPixels = nCulled;
   r.stats.probeRays = nProbe;
   r.stats.probeFailures = nProbeFail;
+  r.stats.apertureRays = nApRays;
+  r.stats.apertureSamples = nApSamples;
+  r.stats.apertureFallbacks = nApFallbacks;
   r.stats.raysPerSample = raysPerSample;
   r.stats.dispersive = dispersive;
   r.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -73,12 +73,67 @@
 //     pixel period. The full-resolution goal (RMSE <= 2% in 60 s) is NOT reached by this
 //     estimator: at 2592 x 1944 it gives ~65% at 4 spp (~70 s on 2 shared cores).
 //
+//   Aperture (src/view/aperture_kernel.h): the camera is focused on the display, so all the
+//     rays of one pixel sample through the lens aperture meet the MLA in a spot of a few um,
+//     and inside the lenslet their DIRECTION maps to the panel position: the aperture images
+//     to a ~35 um disk on the panel (several subpixels: the point estimator's colour lottery).
+//     This estimator integrates that disk by quadrature instead of sampling it:
+//       - per block of pixels (~0.1 mm of the sensor, <= 32 px), a table of the aperture at the
+//         block's centre pixel: the camera weight on a G x G grid of cells (apertureGrid, 12)
+//         over the exit-pupil box (real lens: rear-vertex-plane coordinates, as the camera
+//         samples them; thin lens: the lens disk), boundary cells refined 4 x 4, and for each
+//         point its camera ray's offsets (crossing point on the MLA front plane, slope) from the
+//         centre ray. The camera lens's own non-linearity is kept; only the MLA is linearised.
+//       - per tile and lenslet: the MLA's 2 x 2 Jacobians of the landing point (panel px) with
+//         respect to the crossing point and the slope, by central differences (1 camera ray,
+//         8 MLA-only rays) at the first sample through that lenslet; each table point becomes
+//         a panel offset.
+//       - per sample: the pixel position is jittered (Sobol) as before; one ray through the
+//         aperture's centroid (per primary when dispersive) traced through the MLA with Fresnel
+//         as a deterministic transmittance (RealMla's Weighted mode: no random reflection)
+//         gives the landing point; the estimate is (camera weight / table's centre weight) x
+//         T x angular factor x sum_i w_i drive(landing + offset_i + shift), the lookup per
+//         channel (PanelEmitter::channelDrivePx), with the whole kernel shifted by a random
+//         sub-cell offset (the Sobol lens dimensions) so the quadrature is randomised.
+//       - fallback to sampling the aperture (the point estimator, stochastic Fresnel) for a ray
+//         whose centre ray misses the display or the MLA loses it, or whose lenslet's Jacobian
+//         cannot be measured (probes straddling a lenslet border); counted in ViewStats.
+//     Biases (the ray-by-ray quadrature test and the agreement tests measure them): the dropped
+//     Fresnel ghost branch (paths with >= 2 reflections inside the MLA that still reach the
+//     panel: 0.17% of the energy on the test MLA); the table's energy at G = 12 (-0.3 to +0.3%
+//     against Monte Carlo over the lens; 0.5% at G = 8); the quadrature at the pupil's edge
+//     (whole-cell shifts; ~1-2% of a pixel's value per channel at G = 12, 0.5% at G = 32); the
+//     table and Jacobians taken at the block centre and the lenslet's first sample (the kernel's
+//     shape, not its energy). Measured means: 0.996-0.997 of the point estimator (thin lens,
+//     small real MLA), 0.994 (default real lens at 200 mm); block means within 2.5%.
+//     It does NOT remove the lottery between lenslets: a pixel straddling a lenslet border
+//     still samples which EI each jittered sample sees (at 2592 px ~13% of the display's
+//     pixels, at 648 px about half), which dominates its remaining error.
+//     Cost per pixel sample: the point estimator's rays (one camera + one MLA ray per primary)
+//     plus ~3 x 90 channel lookups; per block ~700 camera rays; per tile and lenslet 9 rays.
+//     Measured (`inim bench --filter '^view/'`, default display and camera, shared 2-core
+//     machine, load 4-5; RMSE relative to the mean):
+//       648 x 486, against the same estimator at 64 spp (same seed: shares samples, so these
+//       underestimate): point 311% / 150% at 1 / 4 spp (0.6 / 2.2 s), footprint 127% / 58%
+//       (1.7 / 3.5 s), aperture 79% / 32% (3.1 / 6.9 s). At this width a pixel covers ~1/4 of a
+//       lenslet and about half the pixels straddle a lenslet border, so per unit of time the
+//       footprint estimator is as good or better.
+//       2592 x 1944, against the same estimator at 8 spp with another seed (includes the
+//       reference's own noise): aperture 55% / 29% at 1 / 2 spp (21 / 38 s); footprint 141% /
+//       104% (25 / 33 s): at full resolution ~3.5x lower error for the same time.
+//       `inim view --spp 3 --estimator aperture` at full resolution: 30 s wall, peak RSS
+//       0.49 GB. The goal (RMSE <= 2% in 60 s) is NOT reached: ~6 spp fit in 60 s.
+//       Footprint stays the default (at 648 px, the width of fig11 and the bench, it is as good
+//       per unit of time); use --estimator aperture at full resolution.
+//
 // Determinism: every pixel's samples depend on (seed, pixel index, sample index) only
 // (Rng::forSample seeds the Sobol scrambles and the MLA's Fresnel choices; the Footprint
 // probes have their own per-pixel stream, and a pixel whose probes fail reuses the last
-// Jacobian of its own tile, which one thread renders in a fixed order), so the image is
-// bit-identical for any thread count. Parallel over 16 x 16 tiles; no allocation per ray.
+// Jacobian of its own tile, which one thread renders in a fixed order; the Aperture tables are
+// per block, built in a separate pass, and its MLA Jacobians are cached per tile, in the
+// tile's fixed order), so the image is bit-identical for any thread count. Parallel over 16 x 16 tiles; no allocation per ray.
 #include <cstdint>
+#include <string>
 
 #include "camera/camera_model.h"
 #include "camera/sensor.h"
@@ -96,8 +151,12 @@ const char* spectralSamplingName(SpectralSampling s);
 //   PointSample: the subpixel under the landing point (the reference estimator).
 //   Footprint:   the exact average of the emitter over a box around the landing point, the
 //                size of this sample's share of the pixel's footprint on the panel (default).
-enum class PanelEstimator { PointSample, Footprint };
-const char* panelEstimatorName(PanelEstimator e);  // "point", "footprint"
+//   Aperture:    the camera aperture integrated by quadrature through an affine model of the
+//                MLA (see the header comment); point sampling where the model does not hold.
+enum class PanelEstimator { PointSample, Footprint, Aperture };
+const char* panelEstimatorName(PanelEstimator e);  // "point", "footprint", "aperture"
+// "point", "footprint" or "aperture" -> the estimator; false for anything else.
+bool parsePanelEstimator(const std::string& name, PanelEstimator& out);
 
 // The display's active area on the MLA's front plane (display frame, mm).
 struct DisplayArea {
@@ -134,6 +193,11 @@ struct ViewSettings {
   // point sample again, on the Footprint code path).
   PanelEstimator panelEstimator = PanelEstimator::Footprint;
   double footprintScale = 1.0;
+  // Aperture: the aperture quadrature grid (G x G cells over the exit-pupil box; ~0.8 G^2
+  // points inside a round pupil) and the size, in pixels, of the blocks that share one table
+  // (0: ~0.1 mm of the sensor, at most 32 px: 32 px at 2592 wide, 11 px at 648).
+  int apertureGrid = 12;
+  int apertureBlock = 0;
 };
 
 struct ViewStats {
@@ -144,6 +208,9 @@ struct ViewStats {
   uint64_t culledPixels = 0; // pixels of tiles that cannot see the display (left 0)
   uint64_t probeRays = 0;    // Footprint: rays traced to measure the pixels' Jacobians
   uint64_t probeFailures = 0;// Footprint: Jacobian columns that no probe could measure (set to 0)
+  uint64_t apertureRays = 0;     // Aperture: rays traced to build the quadrature tables and Jacobians
+  uint64_t apertureSamples = 0;  // Aperture: rays (sample x primary) integrated over the aperture
+  uint64_t apertureFallbacks = 0;// Aperture: rays on the display that fell back to sampling the aperture
   int raysPerSample = 1;     // 1, 3 (primaries, dispersive) or 4 (visible, dispersive)
   bool dispersive = false;
   double seconds = 0.0;
