@@ -13,6 +13,7 @@
 
 #include "camera/camera_config.h"
 #include "cli/commands.h"
+#include "cli/scene_options.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/output_file.h"
@@ -285,7 +286,8 @@ void addReferenceCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "reference", "Render the scene itself through the viewing camera at the same pose, placed as for the EIA "
                    "(the reference for inim view)");
-  cmd->add_option("--scene", o->scene, "Scene JSON (default: the run file's, else scenes/paper-fig7.json)");
+  cmd->add_option("--scene,--field", o->scene,
+                  "Scene JSON or trained radiance field (.inimrf) (default: the run file's, else scenes/paper-fig7.json)");
   cmd->add_option("--run", o->run, "Run file of the EIA (placement, scene, display); options override it");
   auto* scaleOpt = cmd->add_option("--scale", o->scale, "Placement scale: S or sx,sy,sz (display mm per field unit)");
   auto* rotOpt = cmd->add_option("--rotate-deg", o->rotate, "Placement rotation rx,ry,rz, degrees");
@@ -299,16 +301,13 @@ void addReferenceCommand(CLI::App& app) {
     ThreadLimit threads(o->cam.run.threads);
     RunFile run;
     if (!o->run.empty()) run = loadRunFile(o->run);
-    Placement pl;
-    if (run.placement) pl = *run.placement;
-    if (scaleOpt->count()) {
-      pl.scale = parseVec3(o->scale, "--scale", true);
-      pl.scaleKey = "--scale";
-      pl.source = "command line";
-    }
-    if (rotOpt->count()) pl.rotateDeg = parseVec3(o->rotate, "--rotate-deg");
-    if (trOpt->count()) pl.translateMm = parseVec3(o->translate, "--translate-mm");
-    if (rotOpt->count() || trOpt->count()) pl.source = "command line";
+    const std::string scenePath = !o->scene.empty() ? o->scene : run.scene.value_or(defaultScenePath());
+    LoadedField lf = loadField(scenePath, "--scene");
+    const Field* scene = lf.field.get();
+    PlacementArgs pa;
+    pa.scale = o->scale, pa.rotate = o->rotate, pa.translate = o->translate;
+    pa.scaleOpt = scaleOpt, pa.rotOpt = rotOpt, pa.trOpt = trOpt;
+    const Placement pl = resolvePlacement(pa, run.placement ? run.placement : lf.placement);
     const Transform toDisplay = pl.toDisplay();  // singular placements fail here
     CameraSetup cs = setupCamera(o->cam);
 
@@ -316,10 +315,6 @@ void addReferenceCommand(CLI::App& app) {
     const EiLayout L = computeLayout(d);
     const DisplayArea area = lensletArrayArea(L, d.mla.pitchMm);
 
-    const std::string scenePath = !o->scene.empty() ? o->scene : run.scene.value_or(defaultScenePath());
-    if (lowerExt(scenePath) != ".json")
-      throw InputError("", "--scene", "\"" + scenePath + "\"", "an analytic scene (.json)");
-    auto scene = AnalyticScene::load(scenePath);
     if (!o->cam.quiet) {
       std::printf("scene:       %s; placement %s\n", scenePath.c_str(), pl.describe().c_str());
       printCamera(cs);

@@ -39,6 +39,11 @@ bool parsePanelEstimator(const std::string& name, PanelEstimator& out) {
 DisplayArea lensletArrayArea(const EiLayout& L, double P) {
   DisplayArea a;
   if (L.lensX.empty() || L.lensY.empty()) return a;
+  if (L.isHex()) {  // the hex lattice's bounding box (odd rows shifted, rows P sqrt(3)/2 apart)
+    const auto b = L.activeArea();
+    a.x0 = b.x0, a.x1 = b.x1, a.y0 = b.y0, a.y1 = b.y1;
+    return a;
+  }
   a.x0 = L.lensX.front() - 0.5 * P;
   a.x1 = L.lensX.back() + 0.5 * P;
   a.y0 = L.lensY.back() - 0.5 * P;
