@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "cli/radiance_data.h"
+#include "fitting/dataset_fit.h"
 #include "cli/scene_options.h"
 #include "display/display.h"
 #include "display/ei_layout.h"

@@ -46,24 +46,6 @@ constexpr Fig11Pose kPoses[5] = {{"centre", "0°", 0, 0},
                                  {"top", "V +7°", 0, 7},
                                  {"bottom", "V -7°", 0, -7}};
 
-// The pixels whose central ray (lens centre, 550 nm) meets the MLA plane inside the display:
-// the metrics compare reference and reconstruction only where the display can show anything
-// (outside it the reconstruction is black by construction).
-PixelMask displayMask(const CameraModel& camera, const DisplayArea& area) {
-  PixelMask m;
-  m.width = camera.width();
-  m.height = camera.height();
-  m.on.assign(size_t(m.width) * m.height, 0);
-  m.source = "display area";
-  for (int y = 0; y < m.height; ++y)
-    for (int x = 0; x < m.width; ++x) {
-      Ray r;
-      if (!(camera.generateRay(Vec2(x + 0.5f, y + 0.5f), Vec2(0.5f), 550.0f, r) > 0.0f) || !(r.d.z < 0.0f)) continue;
-      const Point3 p = r.o + (-r.o.z / r.d.z) * r.d;
-      m.on[size_t(y) * m.width + x] = area.contains(p.x, p.y) ? 1 : 0;
-    }
-  return m;
-}
 
 }  // namespace
 

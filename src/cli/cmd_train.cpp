@@ -11,7 +11,7 @@
 
 #include "analysis/metrics.h"
 #include "cli/commands.h"
-#include "cli/radiance_data.h"
+#include "fitting/dataset_fit.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/output_file.h"

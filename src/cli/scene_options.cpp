@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "cli/radiance_data.h"
+#include "fitting/dataset_fit.h"
 #include "core/error.h"
 #include "radiance/radiance_field.h"
 #include "scene/analytic_scene.h"

@@ -15,7 +15,9 @@ const StudyValue* StudyReport::find(const std::string& name) const {
   return nullptr;
 }
 
-std::vector<std::string> studyNames() { return {"flip-onset", "image-plane", "depth-sharpness", "braiding", "telecentric"}; }
+std::vector<std::string> studyNames() {
+  return {"flip-onset", "image-plane", "depth-sharpness", "braiding", "telecentric", "nerf-pipeline"};
+}
 
 StudyReport runStudy(const std::string& name, const StudyOptions& o) {
   // The studies sample lenslet cells and EIs as squares (the paper's MLA).
@@ -29,6 +31,7 @@ StudyReport runStudy(const std::string& name, const StudyOptions& o) {
   if (name == "depth-sharpness") return runDepthSharpness(o);
   if (name == "braiding") return runBraiding(o);
   if (name == "telecentric") return runTelecentric(o);
+  if (name == "nerf-pipeline") return runNerfPipeline(o);
   std::string names;
   for (const auto& n : studyNames()) names += (names.empty() ? "" : ", ") + n;
   throw InputError("", "study", name, "one of " + names);

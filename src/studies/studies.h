@@ -54,6 +54,11 @@ StudyReport runBraiding(const StudyOptions& o);
 // against toed-in layout; parallel against the EI/lens pitch prediction, toed-in against the
 // true width.
 StudyReport runTelecentric(const StudyOptions& o);
+// `inim study nerf-pipeline`: the paper's workflow on the analytic scene paper-fig7 against exact
+// ground truth: synthetic capture -> trained voxel radiance field -> EIA -> view, each step
+// compared with the same step done with the scene itself (PSNR, SSIM, CIEDE2000, depth);
+// one-sided bounds on the held-out PSNR, the EIA and the view agreement.
+StudyReport runNerfPipeline(const StudyOptions& o);
 
 // Names accepted by runStudy, in order.
 std::vector<std::string> studyNames();

@@ -135,6 +135,7 @@
 #include <cstdint>
 #include <string>
 
+#include "analysis/metrics.h"
 #include "camera/camera_model.h"
 #include "camera/sensor.h"
 #include "core/image.h"
@@ -169,6 +170,9 @@ DisplayArea lensletArrayArea(const EiLayout& layout, double pitchMm);
 // Fraction of a grid x grid set of pixel centres whose central ray (lens sample at the pupil's
 // centre, 550 nm) reaches the plane z = 0 inside `area`: 0 means the display is out of view.
 double displayCoverage(const CameraModel& camera, const DisplayArea& area, int grid = 32);
+// The pixels whose central ray (lens centre, 550 nm) meets the MLA plane inside `area`: where
+// the display can show anything, so where reconstructions and references are compared.
+PixelMask displayMask(const CameraModel& camera, const DisplayArea& area);
 
 struct ViewSettings {
   int spp = 16;

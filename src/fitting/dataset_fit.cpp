@@ -1,4 +1,4 @@
-#include "cli/radiance_data.h"
+#include "fitting/dataset_fit.h"
 
 #include <fstream>
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include "analysis/metrics.h"
 #include "radiance/volume_renderer.h"
 
-namespace inim::cli {
+namespace inim {
 
 TrainingRays datasetRays(const Dataset& data, const std::vector<int>& frames) {
   TrainingRays r;
@@ -31,27 +31,32 @@ TrainingRays datasetRays(const Dataset& data, const std::vector<int>& frames) {
   return r;
 }
 
+Image renderFrame(const VolumeRenderer& renderer, const Dataset& data, const DatasetFrame& f) {
+  const int w = f.image.width, h = f.image.height;
+  std::vector<RenderRay> rays(size_t(w) * size_t(h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      glm::dvec3 o, d;
+      frameRay(f, x + 0.5, y + 0.5, o, d);
+      RenderRay& r = rays[size_t(y) * size_t(w) + size_t(x)];
+      r.o = Point3(o), r.d = Vec3(glm::normalize(d));
+      r.tNear = float(data.nearPlane), r.tFar = float(data.farPlane);
+    }
+  std::vector<RadianceSample> out(rays.size());
+  renderer.render(rays, out);
+  Image img(w, h, {"R", "G", "B"});
+  for (size_t p = 0; p < out.size(); ++p)
+    for (int c = 0; c < 3; ++c) img.data[p * 3 + size_t(c)] = std::clamp(out[p].rgb[c], 0.0f, 1.0f);
+  return img;
+}
+
 std::vector<ViewScore> evaluate(const VoxelGrid& grid, const Dataset& data, const std::vector<int>& frames,
                                 std::vector<Image>* renders) {
   VolumeRenderer renderer(grid);
   std::vector<ViewScore> scores;
   for (int i : frames) {
     const DatasetFrame& f = data.frames[size_t(i)];
-    const int w = f.image.width, h = f.image.height;
-    std::vector<RenderRay> rays(size_t(w) * size_t(h));
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        glm::dvec3 o, d;
-        frameRay(f, x + 0.5, y + 0.5, o, d);
-        RenderRay& r = rays[size_t(y) * size_t(w) + size_t(x)];
-        r.o = Point3(o), r.d = Vec3(glm::normalize(d));
-        r.tNear = float(data.nearPlane), r.tFar = float(data.farPlane);
-      }
-    std::vector<RadianceSample> out(rays.size());
-    renderer.render(rays, out);
-    Image img(w, h, {"R", "G", "B"});
-    for (size_t p = 0; p < out.size(); ++p)
-      for (int c = 0; c < 3; ++c) img.data[p * 3 + size_t(c)] = std::clamp(out[p].rgb[c], 0.0f, 1.0f);
+    Image img = renderFrame(renderer, data, f);
     Image truth = colorImage(f.image);
     ViewScore s;
     s.frame = i;
@@ -89,4 +94,4 @@ Placement defaultPlacementFor(const std::string& metadata) {
   return p;
 }
 
-}  // namespace inim::cli
+}  // namespace inim

@@ -8,9 +8,10 @@
 
 #include "dataset/dataset.h"
 #include "radiance/trainer.h"
+#include "radiance/volume_renderer.h"
 #include "synthesis/placement.h"
 
-namespace inim::cli {
+namespace inim {
 
 // One ray per pixel centre of the given frames, with the frame's pixel values (sRGB-encoded)
 // and the dataset's near/far.
@@ -20,6 +21,9 @@ TrainingRays datasetRays(const Dataset& data, const std::vector<int>& frames);
 // "scene": ...}. An inim capture is in mm (placement scale 1); any other dataset is in its
 // own units, placed at the paper's 0.0075 field units per mm unless the user says otherwise.
 std::string modelMetadata(const Dataset& data);
+
+// The model's render of one frame (sRGB-encoded as the photos, clamped to [0, 1]).
+Image renderFrame(const VolumeRenderer& renderer, const Dataset& data, const DatasetFrame& f);
 
 // A model's render of dataset frames, scored against the photos (sRGB values, peak 1).
 struct ViewScore {
@@ -31,4 +35,4 @@ std::vector<ViewScore> evaluate(const VoxelGrid& grid, const Dataset& data, cons
                                 std::vector<Image>* renders);
 Placement defaultPlacementFor(const std::string& metadata);
 
-}  // namespace inim::cli
+}  // namespace inim
