@@ -1,4 +1,4 @@
-// inim study NAME --out DIR [--display FILE]: a validation study (src/studies/studies.h) that
+// inim study NAME --out DIR [--display FILE] [--quick]: a validation study (src/studies/studies.h) that
 // writes report.md, plots (PNG) and their data (CSV) into DIR. Exit status 1 when the
 // study's verdict fails, 2 for bad input.
 #include <cstdio>
@@ -16,11 +16,15 @@ void addStudyCommand(CLI::App& app) {
   };
   auto o = std::make_shared<Opts>();
   auto* cmd = app.add_subcommand("study", "Run a validation study: report.md, plots and CSV data in --out");
-  cmd->add_option("name", o->name, "Study: flip-onset | image-plane | depth-sharpness | braiding | telecentric")
+  std::string names;
+  for (const auto& n : studyNames()) names += (names.empty() ? "" : " | ") + n;
+  cmd->add_option("name", o->name, "Study: " + names)
       ->required()
       ->check(CLI::IsMember(studyNames()));
   cmd->add_option("--out", o->study.outDir, "Output folder")->required();
   cmd->add_option("--display", o->study.displayPath, "Display JSON (default: the paper's prototype)");
+  cmd->add_flag("--quick", o->study.quick,
+                "The CI-sized form the tests run (fewer depths, smaller images and budgets; its own tolerances)");
   cmd->callback([o]() {
     const StudyReport r = runStudy(o->name, o->study);
     for (const auto& v : r.values)

@@ -48,6 +48,7 @@ StudyValue compare(const std::string& name, double measured, double predicted, d
 std::string reproduceCommand(const std::string& study, const StudyOptions& o) {
   std::string c = "inim study " + study + " --out " + (o.outDir.empty() ? std::string("DIR") : o.outDir);
   if (!o.displayPath.empty()) c += " --display " + o.displayPath;
+  if (o.quick) c += " --quick";
   return c;
 }
 
