@@ -18,72 +18,13 @@
 #include "view/panel_emitter.h"
 #include "view/view_camera.h"
 #include "view/view_renderer.h"
+#include "real_setup.h"
 #include "view_test_util.h"
 
 using namespace inim;
 using namespace view_test;
 
 namespace {
-
-Image patternEia(const EiLayout& L) {
-  Image eia = uniformEia(L, 0, 0, 0);
-  for (int y = 0; y < L.panelH; ++y)
-    for (int x = 0; x < L.panelW; ++x)
-      for (int c = 0; c < 3; ++c) eia.at(x, y, c) = float(((x * 7 + y * 3 + c * 5) % 11) / 10.0);
-  return eia;
-}
-
-// As in test_footprint.cpp: a small display behind a real refracting MLA with cover glass
-// (dispersive: 3 rays per sample), a thin-lens f/4, 12 mm camera at 200 mm.
-struct RealSetup {
-  static constexpr double P = 1.0, g = 4.0, D = 200.0;
-  Display display;
-  EiLayout layout;
-  std::unique_ptr<PanelEmitter> panel;
-  std::unique_ptr<MlaModel> mla;
-  std::unique_ptr<ThinLensCameraModel> camera;
-  explicit RealSetup(bool white = false, int W = 24, int H = 16) {
-    display = smallDisplay(6, 4, 20, 0.05, P, 3.3, g);
-    display.mla.radiusMm = 1.62;
-    display.panel.coverGlass = CoverGlass{0.3, "N-BK7"};
-    layout = computeLayout(display);
-    panel = std::make_unique<PanelEmitter>(display.panel, layout,
-                                           white ? uniformEia(layout, 1, 1, 1) : patternEia(layout), "eia.exr", g);
-    mla = makeRealMla(display, layout, g);
-    SensorGeometry s;
-    s.widthPx = W;
-    s.heightPx = H;
-    s.pitchMm = 6.0 / W * 12.0 / (D - 12.0);
-    ViewingPose pose;
-    pose.eye = {0.0, 0.0, D};
-    camera = std::make_unique<ThinLensCameraModel>(s, pose, 12.0, 4.0, D);
-  }
-  ViewResult render(PanelEstimator e, int spp, uint64_t seed = 1, const CameraModel* cam = nullptr) const {
-    ViewSettings s;
-    s.spp = spp;
-    s.seed = seed;
-    s.progress = false;
-    s.panelEstimator = e;
-    return renderView(cam ? *cam : *camera, defaultCamera().sensor, *mla, *panel, lensletArrayArea(layout, P), s);
-  }
-};
-
-double rmse(const Image& a, const Image& b) {
-  double se = 0.0;
-  for (size_t i = 0; i < a.data.size(); ++i) se += double(a.data[i] - b.data[i]) * (a.data[i] - b.data[i]);
-  return std::sqrt(se / double(a.data.size()));
-}
-double meanAll(const Image& a) {
-  double s = 0.0;
-  for (float v : a.data) s += v;
-  return s / double(a.data.size());
-}
-double blockMean(const Image& a, int x0, int y0, int w, int h, int c) {
-  double s = 0.0;
-  for (int y = y0; y < y0 + h; ++y)
-    for (int x = x0; x < x0 + w; ++x) s += a.at(x, y, c);
-  return s / (double(w) * h);
-}
 
 // The default camera (real lens) at a small width, 350 mm from the display centre.
 std::unique_ptr<CameraModel> defaultRealCamera(int width) {
@@ -342,8 +283,8 @@ TEST(ViewAperture, RealLensAgreesWithThePointEstimator) {
   ViewCameraOptions o;
   o.width = 640;
   auto cam = makeViewCamera(defaultCamera(), pose, o);
-  const Image a = r.render(PanelEstimator::PointSample, 1024, 1, cam.get()).image;
-  const ViewResult f = r.render(PanelEstimator::Aperture, 64, 3, cam.get());
+  const Image a = r.render(PanelEstimator::PointSample, 1024, 1, 1.0, cam.get()).image;
+  const ViewResult f = r.render(PanelEstimator::Aperture, 64, 3, 1.0, cam.get());
   int x0 = a.width, x1 = -1, y0 = a.height, y1 = -1;
   for (int y = 0; y < a.height; ++y)
     for (int x = 0; x < a.width; ++x)

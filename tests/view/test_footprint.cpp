@@ -16,22 +16,13 @@
 #include "view/ideal_mla.h"
 #include "view/panel_emitter.h"
 #include "view/view_renderer.h"
+#include "real_setup.h"
 #include "view_test_util.h"
 
 using namespace inim;
 using namespace view_test;
 
 namespace {
-
-// A patterned panel-sized EIA: values from 0 to 1 that change from pixel to pixel and channel
-// to channel (the hardest case for a panel estimator: every subpixel differs).
-Image patternEia(const EiLayout& L) {
-  Image eia = uniformEia(L, 0, 0, 0);
-  for (int y = 0; y < L.panelH; ++y)
-    for (int x = 0; x < L.panelW; ++x)
-      for (int c = 0; c < 3; ++c) eia.at(x, y, c) = float(((x * 7 + y * 3 + c * 5) % 11) / 10.0);
-  return eia;
-}
 
 // Dense midpoint-grid average of lookupPx over a box, per channel.
 std::array<double, 3> gridAverage(const PanelEmitter& e, double u0, double v0, double u1, double v1, int n) {
@@ -114,66 +105,6 @@ TEST(PanelEmitterBox, WholeTilesOfWhiteGiveTheFillFactorAndZeroBoxesThePoint) {
     }
   }
 }
-
-namespace {
-
-// A small display behind a real refracting MLA (with cover glass: dispersive, 3 rays per
-// sample), seen by a thin-lens camera of the default camera's f/4 and 12 mm focal length from
-// 200 mm: each camera pixel covers a quarter of a lenslet, and the lens aperture spreads over
-// about a panel pixel on the panel, like the default setup at --width 648.
-struct RealSetup {
-  static constexpr double P = 1.0, g = 4.0, D = 200.0;
-  Display display;
-  EiLayout layout;
-  std::unique_ptr<PanelEmitter> panel;
-  std::unique_ptr<MlaModel> mla;
-  std::unique_ptr<ThinLensCameraModel> camera;
-  explicit RealSetup(bool white = false, int W = 24, int H = 16) {
-    display = smallDisplay(6, 4, 20, 0.05, P, 3.3, g);
-    display.mla.radiusMm = 1.62;
-    display.panel.coverGlass = CoverGlass{0.3, "N-BK7"};
-    layout = computeLayout(display);
-    panel = std::make_unique<PanelEmitter>(display.panel, layout,
-                                           white ? uniformEia(layout, 1, 1, 1) : patternEia(layout), "eia.exr", g);
-    mla = makeRealMla(display, layout, g);
-    SensorGeometry s;
-    s.widthPx = W;
-    s.heightPx = H;
-    s.pitchMm = 6.0 / W * 12.0 / (D - 12.0);  // the 6 mm display fills the width
-    ViewingPose pose;
-    pose.eye = {0.0, 0.0, D};
-    camera = std::make_unique<ThinLensCameraModel>(s, pose, 12.0, 4.0, D);
-  }
-  ViewResult render(PanelEstimator e, int spp, uint64_t seed = 1, double scale = 1.0) const {
-    ViewSettings s;
-    s.spp = spp;
-    s.seed = seed;
-    s.progress = false;
-    s.panelEstimator = e;
-    s.footprintScale = scale;
-    return renderView(*camera, defaultCamera().sensor, *mla, *panel, lensletArrayArea(layout, P), s);
-  }
-};
-
-double rmse(const Image& a, const Image& b) {
-  double se = 0.0;
-  for (size_t i = 0; i < a.data.size(); ++i) se += double(a.data[i] - b.data[i]) * (a.data[i] - b.data[i]);
-  return std::sqrt(se / double(a.data.size()));
-}
-double meanAll(const Image& a) {
-  double s = 0.0;
-  for (float v : a.data) s += v;
-  return s / double(a.data.size());
-}
-// Mean of channel c over a block of pixels.
-double blockMean(const Image& a, int x0, int y0, int w, int h, int c) {
-  double s = 0.0;
-  for (int y = y0; y < y0 + h; ++y)
-    for (int x = x0; x < x0 + w; ++x) s += a.at(x, y, c);
-  return s / (double(w) * h);
-}
-
-}  // namespace
 
 TEST(ViewFootprint, ZeroBoxIsBitIdenticalToThePointEstimator) {
   RealSetup r;
