@@ -126,6 +126,16 @@ inline float sampleRaw(const VoxelGrid& grid, const Corners& cn, uint32_t base, 
   return raw;
 }
 
+// The march's result: accumulated colour over the background by the remaining transmittance,
+// opacity, and the expected depth (weights normalised by the opacity).
+RadianceSample composite(const VoxelGrid& grid, float T, const Vec3& rgb, float depth) {
+  RadianceSample res;
+  res.opacity = 1.0f - T;
+  res.rgb = rgb + T * grid.background;
+  res.depth = res.opacity > 1e-3f ? depth / res.opacity : kInfinity;
+  return res;
+}
+
 template <int D>
 RadianceSample marchRayT(const VoxelGrid& grid, const OccupancyGrid& occ, const GridRay& r,
                        float jitter, float minT) {
@@ -152,11 +162,7 @@ RadianceSample marchRayT(const VoxelGrid& grid, const OccupancyGrid& occ, const 
     T *= 1.0f - alpha;
     return T >= minT;
   });
-  RadianceSample res;
-  res.opacity = 1.0f - T;
-  res.rgb = rgb + T * grid.background;
-  res.depth = res.opacity > 1e-3f ? depth / res.opacity : kInfinity;
-  return res;
+  return composite(grid, T, rgb, depth);
 }
 
 template <int D>
@@ -183,10 +189,7 @@ RadianceSample marchRayGradT(const VoxelGrid& grid, const OccupancyGrid& occ, co
     T *= 1.0f - alpha;
     return T >= minT;
   });
-  RadianceSample res;
-  res.opacity = 1.0f - T;
-  res.rgb = rgb + T * grid.background;
-  res.depth = res.opacity > 1e-3f ? depth / res.opacity : kInfinity;
+  const RadianceSample res = composite(grid, T, rgb, depth);
 
   // Backward. With acc_i = sum_{j<=i} w_j c_j and C the composited colour:
   //   dC/dc_i = T_i alpha_i,   dC/dsigma_i = step * (T_{i+1} c_i - (C - acc_i)).

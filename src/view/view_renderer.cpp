@@ -505,7 +505,8 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
         }
         Vec3d acc(0.0);
         // Adds a traced ray's emission (em per channel, times k = camera weight x throughput) at
-        // wavelength lambda (pdf) of slot j to acc, as the point estimator does.
+        // wavelength lambda (pdf) of slot j to acc: the one place every estimator turns emission
+        // into camera RGB.
         auto accumulate = [&](const std::array<float, kNumPrimaries>& em, double k, float lambda, float pdf, int j,
                               float ul) {
           for (int c = 0; c < kNumPrimaries; ++c) {
@@ -641,20 +642,7 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
             if (o == Outcome::Background) {
               acc += double(w) * bg;
             } else if (o == Outcome::Panel) {
-              for (int c = 0; c < kNumPrimaries; ++c) {
-                if (em[size_t(c)] == 0.0f) continue;
-                const double k = double(w) * T * em[size_t(c)];
-                if (primaries) {
-                  acc += k * channelRgb[c];
-                } else {
-                  const SampledWavelengths wl = SampledWavelengths::sampleVisible(ul);
-                  Vec3d sum(0.0);
-                  for (int i = 0; i < kNumWavelengths; ++i)
-                    if (wl.pdf()[i] > 0.0f)
-                      sum += sensor.response(wl[i]) * (double(panel.channelSpectrum(c, wl[i])) / wl.pdf()[i]);
-                  acc += k * sum / double(kNumWavelengths);
-                }
-              }
+              accumulate(em, double(w) * T, lambdaRef, 1.0f, -1, ul);
             }
             continue;
           }
@@ -689,11 +677,7 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
             if (o == Outcome::Background) {
               acc += double(w) * bg / double(raysPerSample);
             } else if (o == Outcome::Panel) {
-              for (int c = 0; c < kNumPrimaries; ++c) {
-                if (em[size_t(c)] == 0.0f || (primaries && c != j)) continue;
-                const double k = double(w) * T * em[size_t(c)] * panel.channelSpectrum(c, lambda) / pdf;
-                acc += sensor.response(lambda) * (primaries ? k : k / double(kNumWavelengths));
-              }
+              accumulate(em, double(w) * T, lambda, pdf, j, ul);
             }
           }
         }
