@@ -394,6 +394,22 @@ ImageMetrics compareImages(const Image& a, const Image& b, const CompareOptions&
   m.ssim = s.value;
   m.ssimWindows = s.windows;
   m.deltaE = deltaEStats(deltaE2000Map(a, b, opt.spaceA, opt.spaceB, opt.whiteLuminance), a.width, a.height, mask);
+  {
+    const Image ra = colorImage(a, nameA), rb = colorImage(b, nameB);
+    double se = 0.0, sum = 0.0;
+    int64_t n = 0;
+    for (int y = 0; y < a.height; ++y)
+      for (int x = 0; x < a.width; ++x) {
+        if (mask && !mask->on[size_t(y) * mask->width + x]) continue;
+        for (int c = 0; c < 3; ++c) {
+          const double d = double(rb.at(x, y, c)) - ra.at(x, y, c);
+          se += d * d;
+          sum += ra.at(x, y, c);
+        }
+        n += 3;
+      }
+    m.rmseRelative = n > 0 && sum != 0.0 ? std::sqrt(se / double(n)) / (sum / double(n)) : NAN;
+  }
   return m;
 }
 
@@ -420,6 +436,7 @@ Json metricsJson(const ImageMetrics& m) {
   j["de2000_mean"] = num(m.deltaE.mean);
   j["de2000_p95"] = num(m.deltaE.p95);
   j["de2000_max"] = num(m.deltaE.max);
+  j["rmse_relative"] = num(m.rmseRelative);
   j["pixels"] = m.pixels;
   j["ssim_windows"] = m.ssimWindows;
   j["width"] = m.width;
@@ -456,6 +473,9 @@ std::string metricsText(const ImageMetrics& m, const CompareOptions& opt) {
   const char* values = opt.values == MetricValues::Encoded ? "sRGB-encoded values" : "linear Rec.709 values";
   std::snprintf(buf, sizeof buf, "pixels       %lld of %d x %d\n", static_cast<long long>(m.pixels), m.width,
                 m.height);
+  o << buf;
+  std::snprintf(buf, sizeof buf, "RMSE         %.4g%% of A's mean  (B - A, linear input values, R, G, B)\n",
+                100.0 * m.rmseRelative);
   o << buf;
   o << "PSNR         " << formatPsnr(m.psnrDb) << " dB  (" << values << ", peak " << opt.peak
     << (std::isinf(m.psnrDb) ? "; identical" : "") << ")\n";

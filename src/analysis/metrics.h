@@ -161,6 +161,10 @@ struct ImageMetrics {
   double ssim = 0.0;    // NaN when ssimWindows == 0
   int64_t ssimWindows = 0;
   DeltaEStats deltaE;
+  // RMSE of B against A over the counted pixels and the three colour channels, relative to A's
+  // mean there, on the images' own values (no colour conversion): the Monte Carlo convergence
+  // measure of `inim bench`. NaN when A's mean is 0.
+  double rmseRelative = 0.0;
   int64_t pixels = 0;   // pixels counted (the mask's count, or all)
   int width = 0, height = 0;
 };

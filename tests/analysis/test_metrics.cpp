@@ -475,3 +475,24 @@ TEST(Compare, CsvRowsAndText) {
   EXPECT_NE(text.find("31.2500 dB"), std::string::npos) << text;
   EXPECT_NE(text.find("dE2000 p95   0.5000"), std::string::npos) << text;
 }
+
+TEST(RelativeRmse, MatchesTheFormulaWithAndWithoutAMask) {
+  // A = (2, 2, 2) everywhere; B differs by 0.2 in R: RMSE over (pixel, channel) =
+  // sqrt(0.04 / 3), relative to A's mean 2. A mask of half the pixels, where B = A, gives 0.
+  const Image a = flat(16, 12, Vec3(2.0f));
+  Image b = a;
+  for (int y = 0; y < b.height; ++y)
+    for (int x = 0; x < b.width; ++x)
+      if (x < 8) b.at(x, y, 0) += 0.2f;
+  const ImageMetrics all = compareImages(a, b);
+  EXPECT_NEAR(all.rmseRelative, std::sqrt(0.5 * 0.04 / 3.0) / 2.0, 1e-6);
+  PixelMask m;
+  m.width = a.width;
+  m.height = a.height;
+  m.on.assign(size_t(a.width) * a.height, 0);
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 8; x < a.width; ++x) m.on[size_t(y) * a.width + x] = 1;
+  EXPECT_NEAR(compareImages(a, b, {}, &m).rmseRelative, 0.0, 1e-12);
+  EXPECT_TRUE(std::isnan(compareImages(flat(16, 12, Vec3(0.0f)), b).rmseRelative));
+  EXPECT_TRUE(metricsJson(all).contains("rmse_relative"));
+}
