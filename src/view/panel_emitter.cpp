@@ -117,8 +117,9 @@ PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& i
         const auto& r = sp.polygon[(i + 1) % 4];
         axis = q[0] == r[0] || q[1] == r[1];
       }
-      p.rect = axis && std::abs(0.5 * std::abs(a2) - double(p.u1 - p.u0) * double(p.v1 - p.v0)) <=
-                           1e-9 * std::max(1.0, 0.5 * std::abs(a2));
+      // (The bounds are floats: compare at float precision.)
+      p.rect = axis && std::abs(0.5 * std::abs(a2) - (double(p.u1) - p.u0) * (double(p.v1) - p.v0)) <=
+                           1e-6 * std::max(1.0, 0.5 * std::abs(a2));
     }
     p.pixU = std::clamp(int(std::floor(cx)), 0, tileW_ - 1);
     p.pixV = std::clamp(int(std::floor(cy)), 0, tileH_ - 1);
@@ -300,6 +301,36 @@ std::array<float, kNumPrimaries> PanelEmitter::boxAveragePx(double u0, double v0
     }
   for (int c = 0; c < kNumPrimaries; ++c) out[size_t(c)] = float(sum[c] / area);
   return out;
+}
+
+float PanelEmitter::channelBoxAveragePx(int c, double u0, double v0, double u1, double v1) const {
+  const double area = (u1 - u0) * (v1 - v0);
+  if (!(area > 0.0)) return channelDrivePx(c, 0.5 * (u0 + u1), 0.5 * (v0 + v1));
+  const double cu0 = std::max(u0, 0.0), cv0 = std::max(v0, 0.0);
+  const double cu1 = std::min(u1, double(panelW_)), cv1 = std::min(v1, double(panelH_));
+  if (!(cu1 > cu0 && cv1 > cv0)) return 0.0f;
+  double sum = 0.0;
+  const int tu0 = int(std::floor(cu0 / tileW_)), tu1 = int(std::floor(cu1 / tileW_));
+  const int tv0 = int(std::floor(cv0 / tileH_)), tv1 = int(std::floor(cv1 / tileH_));
+  for (int tv = tv0; tv <= tv1; ++tv)
+    for (int tu = tu0; tu <= tu1; ++tu) {
+      const double ou = double(tu) * tileW_, ov = double(tv) * tileH_;
+      const double bu0 = cu0 - ou, bu1 = cu1 - ou, bv0 = cv0 - ov, bv1 = cv1 - ov;
+      for (int i : channelPolys_[size_t(c)]) {
+        const Poly& p = polys_[size_t(i)];
+        if (bu1 <= p.u0 || bu0 >= p.u1 || bv1 <= p.v0 || bv0 >= p.v1) continue;
+        const int col = tu * tileW_ + p.pixU, row = tv * tileH_ + p.pixV;
+        if (col >= panelW_ || row >= panelH_) continue;
+        const float drive = drive_[(size_t(row) * panelW_ + col) * 3 + size_t(c)];
+        if (drive == 0.0f) continue;
+        const double a = p.rect ? (std::min(bu1, double(p.u1)) - std::max(bu0, double(p.u0))) *
+                                      (std::min(bv1, double(p.v1)) - std::max(bv0, double(p.v0)))
+                                : polyBoxArea(p, std::max(bu0, double(p.u0)), std::max(bv0, double(p.v0)),
+                                              std::min(bu1, double(p.u1)), std::min(bv1, double(p.v1)));
+        if (a > 0.0) sum += a * drive;
+      }
+    }
+  return float(sum / area);
 }
 
 float PanelEmitter::radiance(const Point3& p, const Vec3& d, float lambdaNm) const {

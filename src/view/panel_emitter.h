@@ -106,6 +106,8 @@ class PanelEmitter {
   // polygon). The black matrix and the area off the panel count as 0. A box of zero area is a
   // point lookup (the channel of lookupPx gets its weight, the others 0).
   std::array<float, kNumPrimaries> boxAveragePx(double u0, double v0, double u1, double v1) const;
+  // The same for one channel only (its own subpixels: the Quadrature estimator's lookup).
+  float channelBoxAveragePx(int c, double u0, double v0, double u1, double v1) const;
   // The drive value of channel c at a point (panel pixel coordinates): lookupPx(u, v).weight
   // when lookupPx(u, v).channel == c, else 0 (up to points exactly on a rectangle's edge).
   // Tests only channel c's subpixels, axis-aligned rectangles by their bounds: the cheap
