@@ -10,8 +10,9 @@
 //   eia-query/inim-field   the same query rays through Field::query
 //   view/E/spp:N           `inim view` of the default EIA (real MLA, real lens, 0 deg) at
 //                          --view-width, N spp (--view-spp), panel estimator E = point,
-//                          footprint or aperture (--view-estimators); view/reference/E is the
-//                          same estimator at --view-ref-spp (default 16x the largest N, seed 2). The
+//                          footprint, aperture or quadrature (--view-estimators); view/reference/E
+//                          is the same estimator at --view-ref-spp (default 16x the largest N,
+//                          seed 2; aperture table grid --view-ref-grid, default --view-grid). The
 //                          table after the run gives each one's RMSE against its own reference
 //                          (noise) and against the point estimator's reference (noise + bias),
 //                          relative to the reference's mean, and the ratio of the means
@@ -214,6 +215,7 @@ struct ViewContext {
   std::vector<int> spps = {1, 4, 16};
   std::vector<PanelEstimator> estimators = {PanelEstimator::PointSample, PanelEstimator::Footprint};
   int refSpp = 256;
+  int grid = 12, refGrid = 12;  // aperture table grid (aperture, quadrature) of the runs and the references
   std::unique_ptr<DisplayModel> dm;
   CameraDescription desc;
   std::unique_ptr<CameraModel> camera;
@@ -257,6 +259,7 @@ void benchView(benchmark::State& state) {
   // References use another seed: the same seed would share their first samples (the same
   // Sobol points, the same Fresnel choices) with the runs they are compared with.
   if (est < 0) s.seed = 2;
+  s.apertureGrid = est < 0 ? v.refGrid : v.grid;
   const std::pair<int, int> key(est, s.spp);
   for (auto _ : state) {
     ViewResult r = renderView(*v.camera, v.desc.sensor, *v.dm->mla, *v.dm->panel, v.dm->area, s);
@@ -312,6 +315,7 @@ void addBenchCommand(CLI::App& app) {
     std::vector<int> viewSpp = {1, 4, 16};
     std::vector<std::string> viewEstimators = {"point", "footprint", "aperture"};
     int viewRefSpp = 0;
+    int viewGrid = 12, viewRefGrid = 0;
     RadianceBenchOptions radiance;
     RunOptions run;
   };
@@ -324,10 +328,16 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--view-spp", o->viewSpp, "Samples per pixel of the view/ benchmarks")
       ->delimiter(',')->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--view-estimators", o->viewEstimators, "Panel estimators of the view/ benchmarks")
-      ->delimiter(',')->check(CLI::IsMember({"point", "footprint", "aperture"}))->capture_default_str();
+      ->delimiter(',')->check(CLI::IsMember({"point", "footprint", "aperture", "quadrature"}))->capture_default_str();
   cmd->add_option("--view-ref-spp", o->viewRefSpp,
                   "spp of view/reference (footprint estimator); 0: 16x the largest --view-spp")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
+  cmd->add_option("--view-grid", o->viewGrid, "Aperture table grid of the aperture and quadrature view/ runs")
+      ->check(CLI::Range(2, 64))->capture_default_str();
+  cmd->add_option("--view-ref-grid", o->viewRefGrid,
+                  "Aperture table grid of their references (0: --view-grid; larger: the table's own error shows "
+                  "in the RMSE)")
+      ->check(CLI::Range(0, 64))->capture_default_str();
   addRadianceBenchOptions(cmd, o->radiance);
   addRunOptions(cmd, o->run);
   cmd->callback([o]() {
@@ -356,6 +366,8 @@ void addBenchCommand(CLI::App& app) {
         parsePanelEstimator(e, v.estimators.emplace_back());
       const int maxSpp = *std::max_element(v.spps.begin(), v.spps.end());
       v.refSpp = o->viewRefSpp > 0 ? o->viewRefSpp : 16 * maxSpp;
+      v.grid = o->viewGrid;
+      v.refGrid = o->viewRefGrid > 0 ? o->viewRefGrid : o->viewGrid;
       for (PanelEstimator e : v.estimators)
         for (int spp : v.spps)
           benchmark::RegisterBenchmark(

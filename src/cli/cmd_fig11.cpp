@@ -53,7 +53,7 @@ void addFig11Command(CLI::App& app) {
   struct Opts {
     std::string display, scene, camera = "alvium-1800-u-500c", out, mla = "real";
     PlacementArgs place;
-    int width = 648, spp = 16, refSpp = 8, eiaSpp = 4;
+    int width = 648, spp = 4, refSpp = 8, eiaSpp = 4;
     double angle = 7.0, distanceMm = 0.0;
     RunOptions run;
   };
@@ -70,7 +70,10 @@ void addFig11Command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--width", o->width, "View width in pixels (the sensor's pixel pitch scales; 2592 = full)")
       ->capture_default_str();
-  cmd->add_option("--spp", o->spp, "Samples per pixel of the reconstructed views")->capture_default_str();
+  cmd->add_option("--spp", o->spp,
+                  "Strata per pixel of the reconstructed views (quadrature estimator: deterministic, RMSE ~1% of "
+                  "the mean against 16x as many at 648 px)")
+      ->capture_default_str();
   cmd->add_option("--reference-spp", o->refSpp, "Samples per pixel of the reference views")->capture_default_str();
   cmd->add_option("--eia-spp", o->eiaSpp, "Field samples per display ray for the EIA")->capture_default_str();
   cmd->add_option("--angle", o->angle, "Viewing angle of the four side views, degrees")->capture_default_str();
@@ -131,6 +134,7 @@ void addFig11Command(CLI::App& app) {
       ViewSettings vs;
       vs.spp = o->spp;
       vs.seed = o->run.seed;
+      vs.panelEstimator = PanelEstimator::Quadrature;
       ViewResult rec = renderView(*camera, desc.sensor, *dm.mla, *dm.panel, dm.area, vs);
       if (!rec.stats.displayInView())
         std::fprintf(stderr, "inim: warning: the display is out of view at %s\n", pose.describe().c_str());

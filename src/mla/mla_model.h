@@ -7,6 +7,7 @@
 //                                 z = 0: the "pinhole-MLA" comparison model, no refraction.
 //   RealMla (mla stage):          the plano-convex lenslets as refracting geometry: n(lambda),
 //                                 Fresnel, TIR, rays crossing into neighbouring lenslets.
+#include <array>
 #include <cstdint>
 #include <memory>
 
@@ -25,6 +26,16 @@ struct PanelArrival {
 // The light the panel emits toward the viewer travels along -d; its emission angle is the
 // angle between -d and +z.
 
+// One lattice cell of an MLA: the points q of the border plane with
+// nx[i] (q.x - cx) + ny[i] (q.y - cy) <= h[i] for i < n (a square or a hexagon).
+struct LensletCell {
+  int k = -1, l = -1;            // lattice indices (may lie outside the indexed lenslets)
+  double cx = 0.0, cy = 0.0;     // the lenslet's axis
+  double pitch = 0.0;            // lattice pitch (centre to nearest centre)
+  int n = 0;
+  std::array<double, 6> nx{}, ny{}, h{};
+};
+
 class MlaModel {
  public:
   virtual ~MlaModel() = default;
@@ -37,6 +48,20 @@ class MlaModel {
   virtual bool isDispersive() const = 0;
   // z of the MLA's front-most point (rays must start above it), display frame.
   virtual float frontZ() const = 0;
+  // The lattice, for estimators that cut a pixel's footprint along the lenslet borders (the
+  // view renderer's Quadrature estimator). A ray that crosses z = frontZ() at (x, y) with slope
+  // s = (d.x, d.y) / -d.z passes from one lenslet into the next where the point
+  // (x, y) + cellDepth() s crosses a cell border: cellDepth() is the depth below frontZ() of
+  // the plane where neighbouring lenslets meet, reduced to air (divided by n when the ray is in
+  // glass by then). lensletCell: the cell holding a point of that plane; false when the model
+  // has no lattice (the default) or the point is outside it.
+  virtual bool lensletCell(double /*x*/, double /*y*/, LensletCell& /*out*/) const { return false; }
+  virtual double cellDepth() const { return 0.0; }
+  // The same depth for border e of a cell, at the point of that border nearest (x, y): the
+  // neighbouring caps meet lower toward the cell's corners, so the depth varies along a border.
+  virtual double cellBorderDepth(const LensletCell& /*cell*/, int /*e*/, double /*x*/, double /*y*/) const {
+    return cellDepth();
+  }
 };
 
 }  // namespace inim

@@ -329,6 +329,47 @@ void RealMla::cellAt(double x, double y, int& k, int& l) const {
   }
 }
 
+bool RealMla::lensletCell(double x, double y, LensletCell& out) const {
+  if (!std::isfinite(x) || !std::isfinite(y)) return false;
+  cellAt(x, y, out.k, out.l);
+  centreOf(out.k, out.l, out.cx, out.cy);
+  out.pitch = g_.pitchMm;
+  out.n = nCellEdges_;
+  for (int i = 0; i < nCellEdges_; ++i) {
+    out.nx[size_t(i)] = cellEdges_[size_t(i)].nx;
+    out.ny[size_t(i)] = cellEdges_[size_t(i)].ny;
+    out.h[size_t(i)] = cellEdges_[size_t(i)].h;
+  }
+  return true;
+}
+
+namespace {
+// Depth below the front plane of the caps' junction at radius r from a lenslet's axis.
+double junctionDepth(double sag, double frontZ, double zv, double s, double nRef) {
+  if (s > 0) return frontZ - (zv - sag);    // caps toward the viewer: in air
+  return (frontZ - (zv + sag)) / nRef;      // caps toward the panel: in glass (reduced)
+}
+}  // namespace
+
+double RealMla::cellDepth() const {
+  // Where the caps meet at the middle of a cell edge (the apothem P/2, or the aperture's edge
+  // when the caps stop short of it).
+  return junctionDepth(capSag(std::min(0.5 * g_.pitchMm, rMax_)), frontZ_, zv_, s_, nRef_);
+}
+
+double RealMla::cellBorderDepth(const LensletCell& c, int e, double x, double y) const {
+  if (e < 0 || e >= c.n) return cellDepth();
+  // The point of edge e nearest (x, y), clamped to the edge's length (half of it: P/2 for a
+  // square, P / (2 sqrt 3) for a hexagon, on either side of the edge's middle).
+  const double nx = c.nx[size_t(e)], ny = c.ny[size_t(e)], h = c.h[size_t(e)];
+  const double px = x - c.cx, py = y - c.cy;
+  const double along = -ny * px + nx * py;  // along the edge, from its middle
+  const double halfLen = hex_ ? g_.pitchMm / (2.0 * std::sqrt(3.0)) : 0.5 * g_.pitchMm;
+  const double t = std::clamp(along, -halfLen, halfLen);
+  const double r = std::min(std::sqrt(h * h + t * t), rMax_);
+  return junctionDepth(capSag(r), frontZ_, zv_, s_, nRef_);
+}
+
 std::vector<std::array<double, 2>> RealMla::apertureOutline() const { return outline_; }
 
 bool RealMla::inClearAperture(double lx, double ly) const {

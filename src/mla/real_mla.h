@@ -161,6 +161,11 @@ class RealMla final : public MlaModel {
   bool traceToPanel(const Ray& ray, float lambdaNm, Rng& rng, PanelArrival& out) const override;
   bool isDispersive() const override { return ior_->isDispersive(); }
   float frontZ() const override { return frontZf_; }  // rounded up: a ray from there starts in air
+  // Any cell of the (unbounded) lattice. cellDepth: where the caps meet at the middle of a cell
+  // edge; cellBorderDepth: where they meet along the edge (lower toward the corners).
+  bool lensletCell(double x, double y, LensletCell& out) const override;
+  double cellDepth() const override;
+  double cellBorderDepth(const LensletCell& cell, int e, double x, double y) const override;
 
   // General trace in double precision: `o` (in air, or inside the material) and unit `d`,
   // until the ray leaves the MLA for good (true: `out` holds where and which way) or is lost

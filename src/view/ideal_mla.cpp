@@ -53,6 +53,21 @@ bool IdealLensletMla::cellAt(double x, double y, int& k, int& l) const {
   return true;
 }
 
+bool IdealLensletMla::lensletCell(double x, double y, LensletCell& out) const {
+  if (!cellAt(x, y, out.k, out.l)) return false;
+  out.cx = lensXAt(out.k, out.l);
+  out.cy = lensYAt(out.k, out.l);
+  out.pitch = pitch_;
+  out.n = hex_ ? 6 : 4;
+  for (int i = 0; i < out.n; ++i) {  // square: +-x, +-y; hex (pointy-top): normals every 60 deg
+    const double a = hex_ ? i * M_PI / 3.0 : i * M_PI / 2.0;
+    out.nx[size_t(i)] = std::abs(std::cos(a)) < 1e-15 ? 0.0 : std::cos(a);
+    out.ny[size_t(i)] = std::abs(std::sin(a)) < 1e-15 ? 0.0 : std::sin(a);
+    out.h[size_t(i)] = 0.5 * pitch_;
+  }
+  return true;
+}
+
 bool IdealLensletMla::traceToPanel(const Ray& ray, float, Rng&, PanelArrival& out) const {
   const Vec3d o(ray.o), d(ray.d);
   if (!(d.z < 0.0) || !(o.z >= 0.0)) return false;

@@ -30,6 +30,7 @@ class IdealLensletMla final : public MlaModel {
   bool traceToPanel(const Ray& ray, float lambdaNm, Rng& rng, PanelArrival& out) const override;
   bool isDispersive() const override { return false; }
   float frontZ() const override { return 0.0f; }
+  bool lensletCell(double x, double y, LensletCell& out) const override;  // cells on z = 0
 
   double focalLengthMm() const { return f_; }
   double gapMm() const { return g_; }

@@ -15,6 +15,7 @@
 #include "mla/real_mla.h"
 #include "spectral/sampled.h"
 #include "view/aperture_kernel.h"
+#include "view/convex_polygon.h"
 #include "view/qmc.h"
 
 namespace inim {
@@ -24,11 +25,18 @@ const char* spectralSamplingName(SpectralSampling s) {
 }
 
 const char* panelEstimatorName(PanelEstimator e) {
-  return e == PanelEstimator::PointSample ? "point" : e == PanelEstimator::Footprint ? "footprint" : "aperture";
+  switch (e) {
+    case PanelEstimator::PointSample: return "point";
+    case PanelEstimator::Footprint: return "footprint";
+    case PanelEstimator::Aperture: return "aperture";
+    case PanelEstimator::Quadrature: return "quadrature";
+  }
+  return "?";
 }
 
 bool parsePanelEstimator(const std::string& name, PanelEstimator& out) {
-  for (PanelEstimator e : {PanelEstimator::PointSample, PanelEstimator::Footprint, PanelEstimator::Aperture})
+  for (PanelEstimator e : {PanelEstimator::PointSample, PanelEstimator::Footprint, PanelEstimator::Aperture,
+                           PanelEstimator::Quadrature})
     if (name == panelEstimatorName(e)) {
       out = e;
       return true;
@@ -120,6 +128,11 @@ class ChannelSampler {
     }
     cdf_.back() = 1.0f;
   }
+  // The wavelength at cumulative mass u.
+  float quantile(double u) const {
+    float pdf;
+    return sample(float(std::clamp(u, 0.0, double(0x1.fffffep-1f))), pdf);
+  }
   float sample(float u, float& pdf) const {
     const int n = int(pdf_.size());
     int b = int(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin()) - 1;
@@ -178,6 +191,73 @@ bool tileMissesDisplay(const CameraModel& camera, const Tile& t, const DisplayAr
   return lo[0] - mx > area.x1 || hi[0] + mx < area.x0 || lo[1] - my > area.y1 || hi[1] + my < area.y0;
 }
 
+// Quadrature: the camera's centre ray (through the aperture table's centroid) at the centre of
+// a block of pixels, its crossing h of the MLA front plane and slope sl, and their Jacobians
+// with respect to the pixel position (central differences of +-0.5 px, one-sided where a probe
+// is blocked), so that pixel strata map to the MLA and the lenslet borders back to the sensor.
+// Over a block (~0.1 mm of the sensor) the camera's mapping is affine to far below a pixel.
+struct BlockCamera {
+  bool ok = false;
+  Vec2d pc{0.0}, h{0.0}, sl{0.0};
+  double Jh[2][2] = {}, Js[2][2] = {};
+  double w = 0.0, gw[2] = {0.0, 0.0};  // the centre ray's camera weight and its gradient (per px)
+  // A dispersive camera: the centre ray's crossing and slope at each wavelength of `lambdas`,
+  // minus the reference wavelength's (the lens's lateral colour, constant over a block).
+  std::vector<Vec2d> dh, ds;
+  // The centre ray at pixel position p (affine in p) at wavelength index i (-1: reference).
+  void at(const Vec2d& p, int i, Vec2d& ho, Vec2d& so, double& wo) const {
+    const Vec2d d = p - pc;
+    ho = h + Vec2d(Jh[0][0] * d.x + Jh[0][1] * d.y, Jh[1][0] * d.x + Jh[1][1] * d.y);
+    so = sl + Vec2d(Js[0][0] * d.x + Js[0][1] * d.y, Js[1][0] * d.x + Js[1][1] * d.y);
+    if (i >= 0 && size_t(i) < dh.size()) ho += dh[size_t(i)], so += ds[size_t(i)];
+    wo = w + gw[0] * d.x + gw[1] * d.y;
+  }
+};
+
+bool centreCrossing(const ApertureSpace& space, const ApertureKernel& K, Vec2 pix, float lambda, float planeZ,
+                    Vec2d& h, Vec2d& sl, uint64_t& rays, double* weight = nullptr) {
+  Ray r;
+  ++rays;
+  const float w = space.ray(pix, K.centre, lambda, r);
+  if (weight) *weight = w;
+  if (!(w > 0.0f) || !(r.d.z < 0.0f) || !(r.o.z > planeZ)) return false;
+  const double t = (double(planeZ) - r.o.z) / r.d.z;
+  h = Vec2d(r.o.x + t * r.d.x, r.o.y + t * r.d.y);
+  sl = Vec2d(r.d.x / -double(r.d.z), r.d.y / -double(r.d.z));
+  return std::isfinite(h.x) && std::isfinite(h.y);
+}
+
+BlockCamera blockCamera(const ApertureSpace& space, const ApertureKernel& K, Vec2 pc, float lambda, float planeZ,
+                        const std::vector<float>& lambdas, uint64_t& rays) {
+  BlockCamera b;
+  b.pc = Vec2d(pc);
+  if (!centreCrossing(space, K, pc, lambda, planeZ, b.h, b.sl, rays, &b.w)) return b;
+  for (int ax = 0; ax < 2; ++ax) {
+    const Vec2 e = ax == 0 ? Vec2(0.5f, 0.0f) : Vec2(0.0f, 0.5f);
+    Vec2d hp, sp, hm, sm;
+    double wp, wm;
+    const bool okp = centreCrossing(space, K, pc + e, lambda, planeZ, hp, sp, rays, &wp);
+    const bool okm = centreCrossing(space, K, pc - e, lambda, planeZ, hm, sm, rays, &wm);
+    double step = 1.0;
+    if (!okp && !okm) return b;
+    if (!okp) hp = b.h, sp = b.sl, wp = b.w, step = 0.5;
+    if (!okm) hm = b.h, sm = b.sl, wm = b.w, step = 0.5;
+    for (int i = 0; i < 2; ++i) {
+      b.Jh[i][ax] = (hp[i] - hm[i]) / step;
+      b.Js[i][ax] = (sp[i] - sm[i]) / step;
+    }
+    b.gw[ax] = (wp - wm) / step;
+  }
+  for (float l : lambdas) {
+    Vec2d h, sl;
+    if (!centreCrossing(space, K, pc, l, planeZ, h, sl, rays)) return b;
+    b.dh.push_back(h - b.h);
+    b.ds.push_back(sl - b.sl);
+  }
+  b.ok = true;
+  return b;
+}
+
 }  // namespace
 
 ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, const MlaModel& mla,
@@ -211,20 +291,72 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
 
   // Aperture: one quadrature table of the camera aperture per block of pixels (built at the
   // block's centre pixel, reference wavelength), and the MLA traced with deterministic Fresnel.
+  const bool quadrature = s.panelEstimator == PanelEstimator::Quadrature;
   const bool aperture = s.panelEstimator == PanelEstimator::Aperture;
+  if (quadrature && !primaries)
+    throw InputError("", "--spectral", "visible",
+                     "primaries with --estimator quadrature (it integrates each primary's spectrum by quadrature)");
   std::unique_ptr<ApertureSpace> space;
   std::vector<ApertureKernel> kernels;
+  std::vector<BlockCamera> blockCams;  // Quadrature: per block
+  // Quadrature, dispersive: lambdaNodes wavelength nodes per primary, the middles of equal-mass
+  // bins of the primary's spectrum, each with its bin's exact camera-RGB integral (the bins'
+  // integrals sum to channelRgb[c]). Every piece of every stratum is traced at every node: a
+  // node tied to a stratum would tie the colour to the position within the pixel (a bias that
+  // more strata do not remove).
+  const int lambdaNodes = s.wavelengthNodes;
+  if (quadrature && (lambdaNodes < 1 || lambdaNodes > 64))
+    throw InputError("", "--wavelength-nodes", std::to_string(lambdaNodes), "a whole number in 1..64");
+  std::vector<float> binLambda[kNumPrimaries];
+  std::vector<Vec3d> binRgb[kNumPrimaries];
+  int strataX = 1, strataY = 1;
+  if (quadrature) {
+    for (int d = 1; d * d <= spp; ++d)
+      if (spp % d == 0) strataX = d;
+    strataY = spp / strataX;
+  }
   // Auto block size: ~0.1 mm of the sensor (the pupil's shape, vignetting, changes little
   // over that), at most 32 pixels.
   const int kb = s.apertureBlock > 0 ? s.apertureBlock
                                      : std::clamp(int(std::lround(0.1 / std::max(1e-9, camera.sensor().pitchMm))), 1, 32);
   const int kbW = (W + kb - 1) / kb, kbH = (H + kb - 1) / kb;
-  std::atomic<uint64_t> nApRays{0}, nApSamples{0}, nApFallbacks{0};
-  if (aperture) {
+  std::atomic<uint64_t> nApRays{0}, nApSamples{0}, nApFallbacks{0}, nQuadParts{0}, nSplit{0}, nLost{0};
+  if (quadrature && dispersive) {
+    for (int c = 0; c < kNumPrimaries; ++c) {
+      Vec3d sum(0.0);
+      for (int b = 0; b < lambdaNodes; ++b) {
+        const double la = b == 0 ? double(kLambdaMin) : double(samplers[size_t(c)].quantile(double(b) / lambdaNodes));
+        const double lb = b + 1 == lambdaNodes ? double(kLambdaMax)
+                                               : double(samplers[size_t(c)].quantile(double(b + 1) / lambdaNodes));
+        binLambda[c].push_back(samplers[size_t(c)].quantile((b + 0.5) / lambdaNodes));
+        // Simpson on steps of <= 0.25 nm.
+        const int n = 2 * std::max(1, int(std::ceil((lb - la) / 0.5)));
+        Vec3d acc(0.0);
+        for (int i = 0; i <= n && lb > la; ++i) {
+          const double l = la + (lb - la) * i / n;
+          const double wgt = (i == 0 || i == n) ? 1.0 : (i & 1) ? 4.0 : 2.0;
+          acc += sensor.response(l) * (wgt * panel.channelSpectrum(c, float(l)));
+        }
+        binRgb[c].push_back(acc * ((lb - la) / (3.0 * n)));
+        sum += binRgb[c].back();
+      }
+      // The bins' sum is the channel's integral up to the quadratures' rounding: make it exact.
+      for (int i = 0; i < 3; ++i) {
+        const double r = sum[i] != 0.0 ? channelRgb[c][i] / sum[i] : 0.0;
+        for (auto& v : binRgb[c]) v[i] *= r;
+      }
+    }
+  }
+  // A dispersive camera: the block cameras' lateral colour at every node (primary-major).
+  std::vector<float> nodeLambdas;
+  if (quadrature && camDisp)
+    for (int c = 0; c < kNumPrimaries; ++c) nodeLambdas.insert(nodeLambdas.end(), binLambda[c].begin(), binLambda[c].end());
+  if (aperture || quadrature) {
     if (s.apertureGrid < 2 || s.apertureGrid > 64)
       throw InputError("", "apertureGrid", std::to_string(s.apertureGrid), "a grid size in 2..64");
     space = std::make_unique<ApertureSpace>(camera);
     kernels.resize(size_t(kbW) * size_t(kbH));
+    if (quadrature) blockCams.resize(kernels.size());
     parallelForRange(int64_t(kernels.size()), [&](int64_t b0, int64_t b1) {
       uint64_t rays = 0;
       for (int64_t b = b0; b < b1; ++b) {
@@ -232,6 +364,8 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
         const float cx = 0.5f * float(bx * kb + std::min(W, (bx + 1) * kb));
         const float cy = 0.5f * float(by * kb + std::min(H, (by + 1) * kb));
         kernels[size_t(b)] = buildApertureKernel(*space, Vec2(cx, cy), lambdaRef, s.apertureGrid, rays, frontZ);
+        if (quadrature && kernels[size_t(b)].valid())
+          blockCams[size_t(b)] = blockCamera(*space, kernels[size_t(b)], Vec2(cx, cy), lambdaRef, frontZ, nodeLambdas, rays);
       }
       nApRays += rays;
     }, nullptr, 1);
@@ -250,7 +384,7 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
       return;  // the image is already 0 there
     }
     uint64_t cCam = 0, cDisp = 0, cPanel = 0, cEmit = 0, cProbe = 0, cProbeFail = 0;
-    uint64_t cApRays = 0, cApSamples = 0, cApFallbacks = 0;
+    uint64_t cApRays = 0, cApSamples = 0, cApFallbacks = 0, cQuadParts = 0, cSplit = 0, cLost = 0;
     // Footprint: the half-widths (panel pixels) of this pixel's boxes.
     double hu = 0.0, hv = 0.0;
     // One traced ray from the camera to the panel at a wavelength. `em` gets the emission per
@@ -385,16 +519,12 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
       int k = -1, l = -1;
       bool ok = false;
       double shift[2][2] = {};
+      double A[2][2] = {}, B[2][2] = {};  // d landing / d crossing, d landing / d slope (panel px per mm, per unit)
       std::vector<float> off;  // 2 per kernel point
     };
-    auto measureJ = [&](Vec2 pix, const ApertureKernel& K, LensletJ& out) -> bool {
-      ++cApRays;
-      Ray r;
-      if (!(space->ray(pix, K.centre, lambdaRef, r) > 0.0f)) return false;
+    auto measureJ = [&](const Vec2d& h0, const Vec2d& s0, const ApertureKernel& K, LensletJ& out) -> bool {
       Landing c;
-      if (!landRay(r, lambdaRef, c)) return false;
-      const Point3 p = r.o + ((frontZ - r.o.z) / r.d.z) * r.d;
-      const Vec2d h0(p.x, p.y), s0(r.d.x / -double(r.d.z), r.d.y / -double(r.d.z));
+      if (!landMla(h0, s0, lambdaRef, c)) return false;
       out.k = c.k;
       out.l = c.l;
       out.ok = false;
@@ -410,13 +540,18 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
           Landing lp, lm;
           const bool okp = slope ? landMla(h0, s0 + dv, lambdaRef, lp) : landMla(h0 + dv, s0, lambdaRef, lp);
           const bool okm = slope ? landMla(h0, s0 - dv, lambdaRef, lm) : landMla(h0 - dv, s0, lambdaRef, lm);
-          if (!okp || !okm || lp.k != c.k || lp.l != c.l || lm.k != c.k || lm.l != c.l) {
+          // Central where both probes stay in the centre ray's lenslet, else one-sided toward
+          // the side that does (the centre ray near a lenslet border).
+          const bool inP = okp && lp.k == c.k && lp.l == c.l, inM = okm && lm.k == c.k && lm.l == c.l;
+          if (!inP && !inM) {
             good = false;
             break;
           }
+          const Vec2d up = inP ? lp.uv : c.uv, um = inM ? lm.uv : c.uv;
+          const double span = (inP ? e : 0.0) + (inM ? e : 0.0);
           double(&M)[2][2] = slope ? B : A;
-          M[0][ax] = (lp.uv.x - lm.uv.x) / (2.0 * e);
-          M[1][ax] = (lp.uv.y - lm.uv.y) / (2.0 * e);
+          M[0][ax] = (up.x - um.x) / span;
+          M[1][ax] = (up.y - um.y) / span;
         }
         if (good) {
           out.ok = true;
@@ -424,6 +559,8 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
         }
       }
       if (!out.ok) return true;
+      std::memcpy(out.A, A, sizeof A);
+      std::memcpy(out.B, B, sizeof B);
       out.off.resize(2 * K.points.size());
       for (size_t i = 0; i < K.points.size(); ++i) {
         const auto& q = K.points[i];
@@ -469,6 +606,166 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
       LensletJ j;
     };
     std::vector<JEntry> jCache;
+    // The Jacobians of (block, the lenslet of landing L), measured on first need about the ray
+    // that crosses the MLA front plane at h0 with slope s0; nullptr while they cannot be
+    // measured there.
+    auto lensletJacobian = [&](size_t block, const ApertureKernel& K, const Vec2d& h0, const Vec2d& s0,
+                               const Landing& L) -> const LensletJ* {
+      JEntry* entry = nullptr;
+      for (auto& e : jCache)
+        if (e.block == block && e.k == L.k && e.l == L.l) entry = &e;
+      if (!entry) {
+        jCache.push_back({block, L.k, L.l, 0, {}});
+        entry = &jCache.back();
+      }
+      if (!entry->j.ok) {
+        ++entry->tries;
+        LensletJ m;
+        if (measureJ(h0, s0, K, m) && m.ok && m.k == L.k && m.l == L.l) entry->j = std::move(m);
+      }
+      return entry->j.ok ? &entry->j : nullptr;
+    };
+
+    // Quadrature: adds piece Q (pixel coordinates) of a stratum of area aS to acc. Per primary
+    // (dispersive) and wavelength node, the piece's centroid ray (the block's affine camera
+    // model) is traced to the panel, and the lenslet's map is measured about the piece itself by
+    // MLA-only probes (it is not affine over a lenslet: spherical aberration; and its pixel
+    // Jacobian A Jh, with A = 1 - g/f for a thin lenslet, changes by ~6% between the blue and
+    // the green primary, so it is measured at each wavelength):
+    //   - M, landing per pixel: the secant over +-sqrt(3 var) of the piece along each axis,
+    //     whose curvature also gives the mean landing's shift from the centroid's,
+    //     (L+ + L- - 2 L0) / 6 (exact for a quadratic map);
+    //   - B, landing per unit slope (once per piece): one-sided over the aperture's rms slope;
+    //   - A, landing per mm of crossing point = (M - B Js) Jh^-1.
+    // The aperture table's points map to panel offsets A dh + B ds, and each reads the exact
+    // average of its channel's subpixels over the box with the variance of the piece's image
+    // (its covariance through M). Pieces whose probes cross a lenslet border use the lenslet's
+    // cached Jacobians instead.
+    std::vector<float> pieceOff;
+    // B is shared by the pieces of a stratum (it hardly varies over a pixel or with the
+    // wavelength); haveB: measured.
+    struct SlopeJacobian {
+      bool haveB = false;
+      double B[2][2] = {};
+    };
+    // Slots: the primaries (dispersive; 0..2) or the one slot (-1 for all).
+    auto integratePiece = [&](const PolygonMoments& m, double aS, const ApertureKernel& K, const BlockCamera& bc,
+                              size_t block, Vec3d& acc, int slot, SlopeJacobian& sj) {
+      if (!(m.area > 0.0)) return;
+      ++cQuadParts;
+      const double frac = m.area / aS;
+      const int slots = dispersive ? kNumPrimaries : 1, nodes = dispersive ? lambdaNodes : 1;
+      const double det = bc.Jh[0][0] * bc.Jh[1][1] - bc.Jh[0][1] * bc.Jh[1][0];
+      const double iJ[2][2] = {{bc.Jh[1][1] / det, -bc.Jh[0][1] / det}, {-bc.Jh[1][0] / det, bc.Jh[0][0] / det}};
+      bool& haveB = sj.haveB;
+      double(&B)[2][2] = sj.B;
+      for (int j = slot < 0 ? 0 : slot; j < (slot < 0 ? slots : slot + 1); ++j)
+        for (int node = 0; node < nodes; ++node) {
+          const float lambda = dispersive ? binLambda[j][size_t(node)] : lambdaRef;
+          Vec2d hc, sc;
+          double w;
+          bc.at(m.centroid, camDisp ? j * nodes + node : -1, hc, sc, w);
+          ++cCam;
+          Landing L;
+          if (!(w > 0.0) || !landMla(hc, sc, lambda, L)) {
+            ++cLost;
+            continue;
+          }
+          ++cDisp;
+          ++cPanel;
+          auto sameLenslet = [&](const Landing& q) { return q.k == L.k && q.l == L.l; };
+          double M[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+          Vec2d shift(0.0);
+          bool ok = std::abs(det) > 0.0;
+          for (int ax = 0; ax < 2 && ok; ++ax) {
+            const double half = std::sqrt(3.0 * (ax == 0 ? m.cxx : m.cyy));
+            if (!(half > 1e-6)) continue;
+            Landing lp, lm;
+            const Vec2d dh(bc.Jh[0][ax] * half, bc.Jh[1][ax] * half), ds(bc.Js[0][ax] * half, bc.Js[1][ax] * half);
+            const bool inP = landMla(hc + dh, sc + ds, lambda, lp) && sameLenslet(lp);
+            const bool inM = landMla(hc - dh, sc - ds, lambda, lm) && sameLenslet(lm);
+            if (!inP && !inM) {
+              ok = false;
+              break;
+            }
+            const Vec2d up = inP ? lp.uv : L.uv, um = inM ? lm.uv : L.uv;
+            const double span = (inP ? half : 0.0) + (inM ? half : 0.0);
+            M[0][ax] = (up.x - um.x) / span;
+            M[1][ax] = (up.y - um.y) / span;
+            if (inP && inM) shift += (lp.uv + lm.uv - 2.0 * L.uv) / 6.0;
+          }
+          if (ok && !haveB) {
+            const double es = std::max(K.rmsS, 1e-5);
+            for (int ax = 0; ax < 2 && ok; ++ax) {
+              const Vec2d dv = ax == 0 ? Vec2d(es, 0.0) : Vec2d(0.0, es);
+              Landing bp;
+              if (landMla(hc, sc + dv, lambda, bp) && sameLenslet(bp)) {
+                B[0][ax] = (bp.uv.x - L.uv.x) / es;
+                B[1][ax] = (bp.uv.y - L.uv.y) / es;
+              } else if (landMla(hc, sc - dv, lambda, bp) && sameLenslet(bp)) {
+                B[0][ax] = (L.uv.x - bp.uv.x) / es;
+                B[1][ax] = (L.uv.y - bp.uv.y) / es;
+              } else {
+                ok = false;
+              }
+            }
+            haveB = ok;
+          }
+          const float* off = nullptr;
+          if (ok && haveB) {
+            // A = (M - B Js) Jh^-1, then the table's offsets.
+            double R[2][2], A[2][2];
+            for (int a = 0; a < 2; ++a)
+              for (int b = 0; b < 2; ++b) R[a][b] = M[a][b] - (B[a][0] * bc.Js[0][b] + B[a][1] * bc.Js[1][b]);
+            for (int a = 0; a < 2; ++a)
+              for (int b = 0; b < 2; ++b) A[a][b] = R[a][0] * iJ[0][b] + R[a][1] * iJ[1][b];
+            pieceOff.resize(2 * K.points.size());
+            for (size_t i = 0; i < K.points.size(); ++i) {
+              const auto& q = K.points[i];
+              pieceOff[2 * i] = float(A[0][0] * q.dhx + A[0][1] * q.dhy + B[0][0] * q.dsx + B[0][1] * q.dsy);
+              pieceOff[2 * i + 1] = float(A[1][0] * q.dhx + A[1][1] * q.dhy + B[1][0] * q.dsx + B[1][1] * q.dsy);
+            }
+            off = pieceOff.data();
+          } else if (const LensletJ* lj = lensletJacobian(block, K, hc, sc, L)) {
+            // Probes across a lenslet border: the lenslet's cached Jacobians, no curvature shift.
+            off = lj->off.data();
+            shift = Vec2d(0.0);
+            for (int a = 0; a < 2; ++a)
+              for (int b = 0; b < 2; ++b)
+                M[a][b] = lj->A[a][0] * bc.Jh[0][b] + lj->A[a][1] * bc.Jh[1][b] + lj->B[a][0] * bc.Js[0][b] +
+                          lj->B[a][1] * bc.Js[1][b];
+          } else {
+            ++cApFallbacks;  // no Jacobians: the whole aperture at the landing point
+          }
+          double bu = 0.0, bv = 0.0;
+          if (off) {
+            const double vu = M[0][0] * M[0][0] * m.cxx + 2.0 * M[0][0] * M[0][1] * m.cxy + M[0][1] * M[0][1] * m.cyy;
+            const double vv = M[1][0] * M[1][0] * m.cxx + 2.0 * M[1][0] * M[1][1] * m.cxy + M[1][1] * M[1][1] * m.cyy;
+            bu = std::min(std::sqrt(3.0 * std::max(0.0, vu)), kMaxBoxHalfWidthPx);
+            bv = std::min(std::sqrt(3.0 * std::max(0.0, vv)), kMaxBoxHalfWidthPx);
+          }
+          const size_t n = K.points.size();
+          const double k = frac * w / K.centreWeight * L.T * L.factor;
+          const double cu = L.uv.x + shift.x, cv = L.uv.y + shift.y;
+          bool emitted = false;
+          for (int c = 0; c < kNumPrimaries; ++c) {
+            if (dispersive && c != j) continue;
+            double e = 0.0;
+            if (off) {
+              for (size_t i = 0; i < n; ++i) {
+                const double u = cu + off[2 * i], v = cv + off[2 * i + 1];
+                e += double(K.points[i].w) * panel.channelBoxAveragePx(c, u - bu, v - bv, u + bu, v + bv);
+              }
+            } else {
+              e = K.total * panel.channelDrivePx(c, L.uv.x, L.uv.y);
+            }
+            if (e == 0.0) continue;
+            emitted = true;
+            acc += (k * e) * (dispersive ? binRgb[c][size_t(node)] : channelRgb[c]);
+          }
+          if (emitted) ++cEmit;
+        }
+    };
 
     bool haveLastJ = false;  // the tile's last measured Jacobian, for pixels whose probe fails
     double lastJ[2][4] = {};
@@ -499,7 +796,7 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
         }
         const ApertureKernel* K = nullptr;
         size_t kBlock = 0;
-        if (aperture) {
+        if (aperture || quadrature) {
           kBlock = size_t(y / kb) * size_t(kbW) + size_t(x / kb);
           if (kernels[kBlock].valid()) K = &kernels[kBlock];
         }
@@ -577,21 +874,10 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
                 background = !down || !area.contains(p.x, p.y);
               }
               if (w > 0.0f && !background && landRay(r, lambda, L)) {
-                const LensletJ* lj = nullptr;
-                JEntry* entry = nullptr;
-                for (auto& e : jCache)
-                  if (e.block == kBlock && e.k == L.k && e.l == L.l) entry = &e;
-                if (!entry) {
-                  jCache.push_back({kBlock, L.k, L.l, 0, {}});
-                  entry = &jCache.back();
-                }
-                if (!entry->j.ok) {
-                  ++entry->tries;
-                  LensletJ m;
-                  if (measureJ(pix, *K, m) && m.ok && m.k == L.k && m.l == L.l) entry->j = std::move(m);
-                }
-                if (entry->j.ok) lj = &entry->j;
-                if (lj && lj->ok) {
+                const Point3 pf = r.o + ((frontZ - r.o.z) / r.d.z) * r.d;
+                const LensletJ* lj = lensletJacobian(kBlock, *K, Vec2d(pf.x, pf.y),
+                                                     Vec2d(r.d.x / -double(r.d.z), r.d.y / -double(r.d.z)), L);
+                if (lj) {
                   ++cCam;
                   ++cDisp;
                   ++cPanel;
@@ -626,7 +912,8 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
             else if (o == Outcome::Panel) accumulate(em, double(w) * T, lambda, pdf, j, ul);
           }
         }
-        for (int si = 0; !aperture && si < spp; ++si) {
+        // One sample of the point / footprint estimators (also the Quadrature fallback).
+        auto pointSample = [&](int si) {
           const uint32_t idx = uint32_t(si);
           const Vec2 pix(float(x) + SobolSequence::sample(idx, 0, sc[0]), float(y) + SobolSequence::sample(idx, 1, sc[1]));
           const Vec2 lens(SobolSequence::sample(idx, 2, sc[2]), SobolSequence::sample(idx, 3, sc[3]));
@@ -637,14 +924,14 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
           Ray ray;
           if (!dispersive) {
             const float w = camera.generateRay(pix, lens, lambdaRef, ray);
-            if (!(w > 0.0f)) continue;
+            if (!(w > 0.0f)) return;
             const Outcome o = trace(ray, lambdaRef, rng, em, T);
             if (o == Outcome::Background) {
               acc += double(w) * bg;
             } else if (o == Outcome::Panel) {
               accumulate(em, double(w) * T, lambdaRef, 1.0f, -1, ul);
             }
-            continue;
+            return;
           }
 
           // Dispersive: one ray per primary (or per wavelength of the packet).
@@ -653,7 +940,7 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
           const bool shareRay = !camDisp;
           if (shareRay) {
             wShared = camera.generateRay(pix, lens, lambdaRef, shared);
-            if (!(wShared > 0.0f)) continue;
+            if (!(wShared > 0.0f)) return;
           }
           SampledWavelengths wl;
           if (!primaries) wl = SampledWavelengths::sampleVisible(ul);
@@ -680,6 +967,135 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
               accumulate(em, double(w) * T, lambda, pdf, j, ul);
             }
           }
+        };
+        if (!aperture && !quadrature)
+          for (int si = 0; si < spp; ++si) pointSample(si);
+        // Quadrature: each stratum of the pixel (strataX x strataY of them) is cut along the
+        // display's edge and the lenslet borders (mapped back to the sensor through the block's
+        // affine camera model); each piece is integrated through its own lenslet: its centroid's
+        // camera ray traced through the MLA (per primary, at the stratum's wavelength node,
+        // Fresnel as a transmittance) gives the landing point, the aperture table's points map
+        // to panel offsets through the lenslet's Jacobians (as in the Aperture estimator), and
+        // each point reads the exact average of its channel's subpixels over a box with the
+        // variance of the piece's image on the panel (its covariance through M = A Jh + B Js).
+        if (quadrature) {
+          const BlockCamera* bc = K && blockCams[kBlock].ok ? &blockCams[kBlock] : nullptr;
+          const double aS = 1.0 / (double(strataX) * strataY);
+          for (int si = 0; si < spp; ++si) {
+            if (!bc) {
+              ++cApFallbacks;
+              pointSample(si);
+              continue;
+            }
+            const int sx = si % strataX, sy = si / strataX;
+            const ConvexPolygon S = ConvexPolygon::rect(x + double(sx) / strataX, y + double(sy) / strataY,
+                                                        x + double(sx + 1) / strataX, y + double(sy + 1) / strataY);
+            SlopeJacobian sj;
+            // A dispersive camera images the lenslet borders (and the display's edge) at a
+            // slightly different place per wavelength (lateral colour): then the stratum is cut
+            // per primary, with that primary's centre-ray offsets.
+            const int geometries = camDisp ? kNumPrimaries : 1;
+            for (int gi = 0; gi < geometries; ++gi) {
+              Vec2d h0 = bc->h, s0 = bc->sl;
+              if (camDisp) {
+                // The primary's lateral colour at its (middle) node.
+                const size_t ci = size_t(gi * lambdaNodes + lambdaNodes / 2);
+                if (ci < bc->dh.size()) h0 += bc->dh[ci], s0 += bc->ds[ci];
+              }
+              const int slot = camDisp ? gi : -1;
+              // The part on the display (its active area on the MLA front plane).
+              ConvexPolygon on = S;
+              const Vec2d areaN[4] = {{-1.0, 0.0}, {1.0, 0.0}, {0.0, -1.0}, {0.0, 1.0}};
+              const double areaC[4] = {-area.x0, area.x1, -area.y0, area.y1};
+              for (int e = 0; e < 4; ++e) {
+                Vec2d a;
+                double c;
+                pullBackHalfPlane(h0, bc->Jh, bc->pc, areaN[e], areaC[e], a, c);
+                on = on.clipped(a, c);
+              }
+              const double aOn = on.empty() ? 0.0 : on.moments().area;
+              if (bg > 0.0 && aOn < aS * (1.0 - 1e-9)) {
+                // The rest sees the background: its camera weight is the aperture integral at
+                // the stratum (the table's, scaled by the centre ray's weight there).
+                Vec2d hb, sb;
+                double wb;
+                bc->at(S.centroid(), -1, hb, sb, wb);
+                if (wb > 0.0) acc += (aS - aOn) / aS * (K->total * wb / K->centreWeight) * bg / double(geometries);
+              }
+              if (!(aOn > 1e-12 * aS)) continue;
+              // The lenslet cells the part touches, found on the MLA's border plane (depth D).
+              const double D = mla.cellDepth();
+              auto toPlane = [&](const Vec2d& p, double depth) {
+                const Vec2d d = p - bc->pc;
+                return h0 + depth * s0 +
+                       Vec2d((bc->Jh[0][0] + depth * bc->Js[0][0]) * d.x + (bc->Jh[0][1] + depth * bc->Js[0][1]) * d.y,
+                             (bc->Jh[1][0] + depth * bc->Js[1][0]) * d.x + (bc->Jh[1][1] + depth * bc->Js[1][1]) * d.y);
+              };
+              std::array<LensletCell, 24> cells;
+              int nCells = 0;
+              auto addCell = [&](const LensletCell& c) {
+                for (int i = 0; i < nCells; ++i)
+                  if (cells[size_t(i)].k == c.k && cells[size_t(i)].l == c.l) return;
+                if (nCells < int(cells.size())) cells[size_t(nCells++)] = c;
+              };
+              LensletCell cell;
+              const Vec2d oc = on.centroid(), qc = toPlane(oc, D);
+              if (mla.lensletCell(qc.x, qc.y, cell)) addCell(cell);
+              for (int i = 0; i < on.n; ++i) {
+                const Vec2d q = toPlane(on.v[size_t(i)], D);
+                if (mla.lensletCell(q.x, q.y, cell)) addCell(cell);
+              }
+              if (nCells == 0) {  // no lattice: one piece
+                integratePiece(on.moments(), aS, *K, *bc, kBlock, acc, slot, sj);
+                continue;
+              }
+              double covered = 0.0;
+              int pieces = 0;
+              auto cutPieces = [&](int from, int to) {
+                for (int i = from; i < to; ++i) {
+                  const LensletCell& c = cells[size_t(i)];
+                  ConvexPolygon q = on;
+                  for (int e = 0; e < c.n && !q.empty(); ++e) {
+                    // The border where the ray passes from this cap to the next: its depth
+                    // where the part is along the edge (the caps meet lower toward the corners).
+                    const double De = mla.cellBorderDepth(c, e, qc.x, qc.y);
+                    const Vec2d hE = h0 + De * s0;
+                    double JE[2][2];
+                    for (int a = 0; a < 2; ++a)
+                      for (int b = 0; b < 2; ++b) JE[a][b] = bc->Jh[a][b] + De * bc->Js[a][b];
+                    Vec2d a;
+                    double cc;
+                    const Vec2d nrm(c.nx[size_t(e)], c.ny[size_t(e)]);
+                    pullBackHalfPlane(hE, JE, bc->pc, nrm, c.h[size_t(e)] + nrm.x * c.cx + nrm.y * c.cy, a, cc);
+                    q = q.clipped(a, cc);
+                  }
+                  if (q.empty()) continue;
+                  const PolygonMoments mq = q.moments();
+                  if (!(mq.area > 1e-12 * aS)) continue;
+                  covered += mq.area;
+                  ++pieces;
+                  integratePiece(mq, aS, *K, *bc, kBlock, acc, slot, sj);
+                }
+              };
+              cutPieces(0, nCells);
+              if (covered < aOn * (1.0 - 1e-6)) {
+                // A cell touched without holding a vertex of the part (a hexagon's corner
+                // poking in): try the neighbours of the cells found.
+                const int n0 = nCells;
+                for (int i = 0; i < n0; ++i) {
+                  const LensletCell c0 = cells[size_t(i)];
+                  const double P = c0.pitch;
+                  const double offs[12][2] = {{P, 0}, {-P, 0}, {0, P}, {0, -P}, {P, P}, {P, -P}, {-P, P}, {-P, -P},
+                                              {0.5 * P, 0.866 * P}, {-0.5 * P, 0.866 * P}, {0.5 * P, -0.866 * P},
+                                              {-0.5 * P, -0.866 * P}};
+                  for (const auto& o : offs)
+                    if (mla.lensletCell(c0.cx + o[0], c0.cy + o[1], cell)) addCell(cell);
+                }
+                cutPieces(n0, nCells);
+              }
+              if (pieces > 1 && gi == 0) ++cSplit;
+            }
+          }
         }
         acc /= double(spp);
         for (int c = 0; c < 3; ++c) img.at(x, y, c) = float(acc[c]);
@@ -693,6 +1109,9 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
     nApRays += cApRays;
     nApSamples += cApSamples;
     nApFallbacks += cApFallbacks;
+    nQuadParts += cQuadParts;
+    nSplit += cSplit;
+    nLost += cLost;
   }, &bar, 16);
   bar.finish();
 
@@ -708,6 +1127,9 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
   r.stats.apertureRays = nApRays;
   r.stats.apertureSamples = nApSamples;
   r.stats.apertureFallbacks = nApFallbacks;
+  r.stats.quadratureParts = nQuadParts;
+  r.stats.splitStrata = nSplit;
+  r.stats.lostParts = nLost;
   r.stats.raysPerSample = raysPerSample;
   r.stats.dispersive = dispersive;
   r.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

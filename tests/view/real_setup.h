@@ -33,9 +33,14 @@ struct RealSetup {
   std::unique_ptr<PanelEmitter> panel;
   std::unique_ptr<MlaModel> mla;
   std::unique_ptr<ThinLensCameraModel> camera;
-  explicit RealSetup(bool white = false, int W = 24, int H = 16) {
-    display = smallDisplay(6, 4, 20, 0.05, P, 3.3, g);
+  // hex: a hex lattice of hexagonal lenslets (pointy-top cells, 6 x 5 of them) instead.
+  explicit RealSetup(bool white = false, int W = 24, int H = 16, bool hex = false) {
+    display = hex ? smallDisplay(5, 5, 20, 0.05, P, 3.3, g, 14) : smallDisplay(6, 4, 20, 0.05, P, 3.3, g);
     display.mla.radiusMm = 1.62;
+    if (hex) {
+      display.mla.lattice = Mla::Lattice::Hex;
+      display.mla.aperture = Mla::Aperture::Hex;
+    }
     display.panel.coverGlass = CoverGlass{0.3, "N-BK7"};
     layout = computeLayout(display);
     panel = std::make_unique<PanelEmitter>(display.panel, layout,
@@ -50,14 +55,15 @@ struct RealSetup {
     camera = std::make_unique<ThinLensCameraModel>(s, pose, 12.0, 4.0, D);
   }
   ViewResult render(PanelEstimator e, int spp, uint64_t seed = 1, double scale = 1.0,
-                    const CameraModel* cam = nullptr) const {
+                    const CameraModel* cam = nullptr, const MlaModel* otherMla = nullptr) const {
     ViewSettings s;
     s.spp = spp;
     s.seed = seed;
     s.progress = false;
     s.panelEstimator = e;
     s.footprintScale = scale;
-    return renderView(cam ? *cam : *camera, defaultCamera().sensor, *mla, *panel, lensletArrayArea(layout, P), s);
+    return renderView(cam ? *cam : *camera, defaultCamera().sensor, otherMla ? *otherMla : *mla, *panel,
+                      lensletArrayArea(layout, P), s);
   }
 };
 
