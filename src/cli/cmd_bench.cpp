@@ -313,7 +313,7 @@ void addBenchCommand(CLI::App& app) {
     double minTime = 0.5;
     int viewWidth = 648;
     std::vector<int> viewSpp = {1, 4, 16};
-    std::vector<std::string> viewEstimators = {"point", "footprint", "aperture"};
+    std::vector<std::string> viewEstimators = {"point", "footprint", "aperture", "quadrature"};
     int viewRefSpp = 0;
     int viewGrid = 12, viewRefGrid = 0;
     RadianceBenchOptions radiance;

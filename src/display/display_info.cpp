@@ -5,6 +5,8 @@
 #include <cstdarg>
 #include <cstdio>
 
+#include "spectral/dispersion.h"
+
 namespace inim {
 
 namespace {
@@ -38,6 +40,13 @@ GapInfo gapInfo(const Display& d, const EiLayout& L, double f, double g) {
     r.referencePlaneKind = *r.referencePlaneMm > 0 ? "real" : "virtual";
   }
   r.pixelAngularPitchDeg = deg(std::atan(p / g));
+  if (d.panel.coverGlass && d.panel.coverGlass->thicknessMm > 0.0) {
+    const double n = MaterialCatalog::standard().dielectric(d.panel.coverGlass->material)->n(550.0f);
+    const double ge = g - d.panel.coverGlass->thicknessMm * (1.0 - 1.0 / n);
+    r.opticalGapMm = ge;
+    r.opticalViewingAngleDeg = deg(2.0 * std::atan(P / (2.0 * ge)));
+    if (std::abs(ge - f) > 1e-9 * f) r.opticalReferencePlaneMm = ge * f / (ge - f);
+  }
 
   std::vector<double> ex(size_t(L.eiCols)), ey(size_t(L.eiRows));
   for (int k = 0; k < L.eiCols; ++k) ex[size_t(k)] = L.eiCentreX(k);
@@ -98,6 +107,9 @@ Json gapJson(const GapInfo& g) {
   j["gap_mm"] = g.gapMm;
   j["viewing_angle_deg"] = g.viewingAngleDeg;
   j["ei_viewing_angle_deg"] = g.eiViewingAngleDeg;
+  j["optical_gap_mm"] = optNum(g.opticalGapMm);
+  j["optical_viewing_angle_deg"] = optNum(g.opticalViewingAngleDeg);
+  j["optical_reference_plane_mm"] = optNum(g.opticalReferencePlaneMm);
   j["reference_image_plane_mm"] = optNum(g.referencePlaneMm);
   j["reference_image_plane"] = g.referencePlaneKind;
   j["pixel_angular_pitch_deg"] = g.pixelAngularPitchDeg;
@@ -132,6 +144,11 @@ std::string gapText(const char* title, const GapInfo& g) {
   else
     s += "  reference image plane L = gf/(g-f) at infinity (g = f)\n";
   s += fmt("  pixel angular pitch atan(p/g)       %.4f deg\n", g.pixelAngularPitchDeg);
+  if (g.opticalGapMm) {
+    s += fmt("  through the panel's cover glass: optical gap g_eff = g - t(1 - 1/n) %.4f mm (550 nm), psi %.3f deg",
+             *g.opticalGapMm, *g.opticalViewingAngleDeg);
+    s += g.opticalReferencePlaneMm ? fmt(", L %.3f mm\n", *g.opticalReferencePlaneMm) : std::string(", L at infinity\n");
+  }
   s += "  EI-centre chief rays (physical lens centres) converge at x: " +
        optText(g.convergenceXMm, "never (parallel)") + ", y: " +
        optText(g.convergenceYMm, "never (parallel)") + "  (< 0: virtual point behind the MLA)\n";

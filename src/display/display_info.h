@@ -25,6 +25,10 @@ struct GapInfo {
   std::optional<double> referencePlaneMm;
   std::string referencePlaneKind;  // "infinity", "real" or "virtual"
   double pixelAngularPitchDeg = 0.0;  // atan(pixel / g): angle between neighbour pixels' rays
+  // Seen through the panel's cover glass (thickness t, index n at 550 nm), the panel sits at the
+  // optical gap g_eff = g - t (1 - 1/n) (paraxial): the view simulation's lenslets image it at
+  // g_eff f / (g_eff - f) and its viewing angle is 2 atan(P / (2 g_eff)). nullopt without glass.
+  std::optional<double> opticalGapMm, opticalViewingAngleDeg, opticalReferencePlaneMm;
   // EI centre chief rays converge at z = g P / (p_EI - P): > 0 in front (viewer side),
   // < 0 a virtual point behind the MLA (rays diverge); nullopt when p_EI == P (parallel).
   std::optional<double> convergenceXMm, convergenceYMm;

@@ -123,8 +123,8 @@
 //       104% (25 / 33 s): at full resolution ~3.5x lower error for the same time.
 //       `inim view --spp 3 --estimator aperture` at full resolution: 30 s wall, peak RSS
 //       0.49 GB. The goal (RMSE <= 2% in 60 s) is NOT reached: ~6 spp fit in 60 s.
-//       Footprint stays the default (at 648 px, the width of fig11 and the bench, it is as good
-//       per unit of time); use --estimator aperture at full resolution.
+//       Superseded by Quadrature (below), which also integrates the pixel's area and is the
+//       default of `inim view` and `inim fig11`; kept as a sampled comparison.
 //
 //   Quadrature (no sampling at all): the measurement of a pixel is an integral over its area,
 //     the camera's aperture and each primary's spectrum, and every one of them is done by a
@@ -155,17 +155,22 @@
 //     16 spp is within the point reference's own noise (1.8%) pixel by pixel on the small real
 //     setup, whose pixels cover a quarter of a lenslet. Cost per piece and primary: 1 + 4 MLA
 //     rays (landing, pixel Jacobian) plus 2 per stratum (slope Jacobian), no camera-lens rays,
-//     and ~90 box averages.
-//     Measured (`inim bench --filter '^view/' --view-width 2592 --view-spp 1,2 --view-ref-spp 16
-//     --view-estimators quadrature`, default display, EIA and camera, 2 cores): RMSE against
-//     the 16-spp image 1.28% at 1 spp in 20 s, 0.97% at 2 spp in 36 s.
+//     and one box average per table point (~0.8 G^2).
+//     Measured (`inim bench --filter '^view/' --view-width W --view-estimators ...`, default
+//     display, EIA and camera, 2 cores; RMSE relative to the mean against the same estimator at
+//     16x the spp):
+//       2592 x 1944 (--view-spp 1,2 --view-ref-spp 16): 1.28% at 1 spp in 20 s, 0.97% at 2 spp
+//       in 36 s; `inim view` at full resolution: 22 s wall, peak RSS 0.49 GB.
+//       648 x 486 (--view-spp 1,4): 2.42% / 0.75% at 1 / 4 spp (2.4 / 5.9 s), against
+//       footprint 127% / 59% (0.8 / 1.6 s) and aperture 69% / 25% (1.2 / 2.9 s).
 //
 // Determinism: every pixel's samples depend on (seed, pixel index, sample index) only
 // (Rng::forSample seeds the Sobol scrambles and the MLA's Fresnel choices; the Footprint
 // probes have their own per-pixel stream, and a pixel whose probes fail reuses the last
 // Jacobian of its own tile, which one thread renders in a fixed order; the Aperture tables are
 // per block, built in a separate pass, and its MLA Jacobians are cached per tile, in the
-// tile's fixed order), so the image is bit-identical for any thread count. Parallel over 16 x 16 tiles; no allocation per ray.
+// tile's fixed order; Quadrature has no random numbers and caches only per tile), so the image
+// is bit-identical for any thread count. Parallel over 16 x 16 tiles; no allocation per ray.
 #include <cstdint>
 #include <string>
 

@@ -327,3 +327,19 @@ TEST(DisplayValidation, ToedInNeedsRoomForWholePixelEis) {
             }).key(),
             "viewing_distance_mm");
 }
+
+TEST(DisplayInfo, CoverGlassShortensTheOpticalGap) {
+  // The default panel's 0.55 mm N-BK7 cover glass (n = 1.51852 at 550 nm, Sellmeier): the
+  // lenslets see the panel at g - t (1 - 1/n); without glass there is no optical gap to report.
+  Display d = loadDisplay(defaultDisplayPath());
+  ASSERT_TRUE(d.panel.coverGlass.has_value());
+  const double t = d.panel.coverGlass->thicknessMm, n = 1.51852;
+  const DisplayInfo r = derive(d);
+  ASSERT_TRUE(r.reconstruction.opticalGapMm.has_value());
+  const double ge = 4.0 - t * (1.0 - 1.0 / n);
+  EXPECT_NEAR(*r.reconstruction.opticalGapMm, ge, 1e-4);
+  EXPECT_NEAR(*r.reconstruction.opticalViewingAngleDeg, 2.0 * std::atan(0.5 / ge) * 180.0 / kPiD, 1e-3);
+  EXPECT_NEAR(*r.reconstruction.opticalReferencePlaneMm, ge * 3.3 / (ge - 3.3), 1e-2);
+  d.panel.coverGlass.reset();
+  EXPECT_FALSE(derive(d).reconstruction.opticalGapMm.has_value());
+}
