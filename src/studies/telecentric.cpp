@@ -186,22 +186,17 @@ StudyReport runTelecentric(const StudyOptions& o) {
       tc.push_back(kBarW * sizeToedIn(z, gEff));
       tcNo.push_back(kBarW);
     }
-    PlotSeries a{"parallel, predicted", zc, wc};
-    a.markers = false;
-    a.dash = 8.0;
-    a.color = plotPalette(0);
-    PlotSeries a2{"parallel, predicted, no glass", zc, wcNo};
-    a2.markers = false;
-    a2.dash = 3.0;
-    a2.color = plotPalette(2);
-    PlotSeries b{"toed-in, predicted", zc, tc};
-    b.markers = false;
-    b.dash = 8.0;
-    b.color = plotPalette(1);
-    PlotSeries b2{"true width (toed-in, no glass)", zc, tcNo};
-    b2.markers = false;
-    b2.dash = 3.0;
-    b2.color = plotPalette(3);
+    auto curve = [&](const char* name, const std::vector<double>& y, double dash, int colour) {
+      PlotSeries s{name, zc, y};
+      s.markers = false;
+      s.dash = dash;
+      s.color = plotPalette(colour);
+      return s;
+    };
+    const PlotSeries a = curve("parallel, predicted", wc, 8.0, 0);
+    const PlotSeries a2 = curve("parallel, predicted, no glass", wcNo, 3.0, 2);
+    const PlotSeries b = curve("toed-in, predicted", tc, 8.0, 1);
+    const PlotSeries b2 = curve("true width (toed-in, no glass)", tcNo, 3.0, 3);
     PlotSeries c{"parallel, measured", zs, w[0][0]};
     c.line = false;
     c.color = plotPalette(0);

@@ -1,9 +1,13 @@
 #pragma once
 // The small real-MLA setup the panel-estimator tests share (test_footprint.cpp,
 // test_aperture.cpp), and the image statistics they compare with.
+#include <gtest/gtest.h>
+
 #include <cmath>
+#include <cstring>
 #include <memory>
 
+#include "core/parallel.h"
 #include "mla/real_mla.h"
 #include "view/panel_emitter.h"
 #include "view/view_renderer.h"
@@ -83,6 +87,22 @@ inline double blockMean(const Image& a, int x0, int y0, int w, int h, int c) {
   for (int y = y0; y < y0 + h; ++y)
     for (int x = x0; x < x0 + w; ++x) s += a.at(x, y, c);
   return s / (double(w) * h);
+}
+
+// The estimator's image of the setup is the same bit for bit on one and on two threads, and finite.
+inline void expectBitIdenticalOnOneAndTwoThreads(const RealSetup& r, PanelEstimator e, int spp, uint64_t seed) {
+  Image one, two;
+  {
+    ThreadLimit t(1);
+    one = r.render(e, spp, seed).image;
+  }
+  {
+    ThreadLimit t(2);
+    two = r.render(e, spp, seed).image;
+  }
+  ASSERT_EQ(one.data.size(), two.data.size());
+  EXPECT_EQ(std::memcmp(one.data.data(), two.data.data(), one.data.size() * sizeof(float)), 0);
+  for (float v : one.data) ASSERT_TRUE(std::isfinite(v));
 }
 
 }  // namespace view_test

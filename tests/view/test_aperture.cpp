@@ -321,17 +321,5 @@ TEST(ViewAperture, RealLensAgreesWithThePointEstimator) {
 }
 
 TEST(ViewAperture, BitIdenticalOnOneAndTwoThreads) {
-  RealSetup r;
-  Image one, two;
-  {
-    ThreadLimit t(1);
-    one = r.render(PanelEstimator::Aperture, 3, 9).image;
-  }
-  {
-    ThreadLimit t(2);
-    two = r.render(PanelEstimator::Aperture, 3, 9).image;
-  }
-  ASSERT_EQ(one.data.size(), two.data.size());
-  EXPECT_EQ(std::memcmp(one.data.data(), two.data.data(), one.data.size() * sizeof(float)), 0);
-  for (float v : one.data) ASSERT_TRUE(std::isfinite(v));
+  expectBitIdenticalOnOneAndTwoThreads(RealSetup(), PanelEstimator::Aperture, 3, 9);
 }

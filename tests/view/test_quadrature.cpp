@@ -235,17 +235,5 @@ TEST(ViewQuadrature, RealLensAgreesWithThePointEstimator) {
 }
 
 TEST(ViewQuadrature, BitIdenticalOnOneAndTwoThreads) {
-  RealSetup r;
-  Image one, two;
-  {
-    ThreadLimit t(1);
-    one = r.render(PanelEstimator::Quadrature, 2, 9).image;
-  }
-  {
-    ThreadLimit t(2);
-    two = r.render(PanelEstimator::Quadrature, 2, 9).image;
-  }
-  ASSERT_EQ(one.data.size(), two.data.size());
-  EXPECT_EQ(std::memcmp(one.data.data(), two.data.data(), one.data.size() * sizeof(float)), 0);
-  for (float v : one.data) ASSERT_TRUE(std::isfinite(v));
+  expectBitIdenticalOnOneAndTwoThreads(RealSetup(), PanelEstimator::Quadrature, 2, 9);
 }
