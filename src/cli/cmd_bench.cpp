@@ -215,7 +215,7 @@ struct ViewContext {
   std::vector<int> spps = {1, 4, 16};
   std::vector<PanelEstimator> estimators = {PanelEstimator::PointSample, PanelEstimator::Footprint};
   int refSpp = 256;
-  int grid = 12, refGrid = 12;  // aperture table grid (aperture, quadrature) of the runs and the references
+  int grid = 16, refGrid = 16;  // aperture table grid (aperture, quadrature) of the runs and the references
   std::unique_ptr<DisplayModel> dm;
   CameraDescription desc;
   std::unique_ptr<CameraModel> camera;
@@ -315,7 +315,7 @@ void addBenchCommand(CLI::App& app) {
     std::vector<int> viewSpp = {1, 4, 16};
     std::vector<std::string> viewEstimators = {"point", "footprint", "aperture", "quadrature"};
     int viewRefSpp = 0;
-    int viewGrid = 12, viewRefGrid = 0;
+    int viewGrid = 16, viewRefGrid = 0;
     RadianceBenchOptions radiance;
     RunOptions run;
   };

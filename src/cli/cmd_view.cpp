@@ -150,7 +150,7 @@ void addViewCommand(CLI::App& app) {
     CameraPoseOpts cam;
     std::string display, eia, mla = "real", spectral = "primaries", layout;
     std::string estimator = "auto";
-    int apertureGrid = 12, wavelengthNodes = 1;
+    int apertureGrid = 16, wavelengthNodes = 1;
     double gapMm = 0.0, background = 0.0, cosN = 0.0, viewingDistanceMm = 0.0;
     bool noCoverGlass = false, relative = false, noCull = false;
   };
