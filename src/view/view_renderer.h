@@ -160,9 +160,11 @@
 //     Measured (`inim bench --filter '^view/' --view-width W --view-estimators ...`, default
 //     display, EIA and camera, 2 cores; RMSE relative to the mean against the same estimator at
 //     16x the spp):
-//       2592 x 1944 (--view-spp 1,2 --view-ref-spp 16): 1.28% at 1 spp in 20 s, 0.97% at 2 spp
-//       in 36 s; `inim view` at full resolution: 22 s wall, peak RSS 0.49 GB.
-//       648 x 486 (--view-spp 1,4): 2.42% / 0.75% at 1 / 4 spp (2.4 / 5.9 s), against
+//       2592 x 1944 (--view-spp 1,2 --view-ref-spp 16), G = 16: 1.23% at 1 spp in 25.5 s, 0.93%
+//       at 2 spp in 46 s (G = 12: 1.28% in 20 s, 0.97% in 36 s); the table's own error on top
+//       (apertureGrid above) 0.94% at G = 16; `inim view` at full resolution: 27 s wall, peak
+//       RSS 0.50 GB.
+//       648 x 486 (--view-spp 1,4), G = 12: 2.42% / 0.75% at 1 / 4 spp (2.4 / 5.9 s), against
 //       footprint 127% / 59% (0.8 / 1.6 s) and aperture 69% / 25% (1.2 / 2.9 s).
 //
 // Determinism: every pixel's samples depend on (seed, pixel index, sample index) only
