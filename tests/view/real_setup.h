@@ -9,7 +9,9 @@
 
 #include "core/parallel.h"
 #include "mla/real_mla.h"
+#include "view/display_pose.h"
 #include "view/panel_emitter.h"
+#include "view/view_camera.h"
 #include "view/view_renderer.h"
 #include "view_test_util.h"
 
@@ -87,6 +89,16 @@ inline double blockMean(const Image& a, int x0, int y0, int w, int h, int c) {
   for (int y = y0; y < y0 + h; ++y)
     for (int x = x0; x < x0 + w; ++x) s += a.at(x, y, c);
   return s / (double(w) * h);
+}
+
+// The default camera (real lens) 200 mm from the setup, 640 px wide: the small display covers
+// ~40 x 27 pixels (a pixel ~0.15 mm of the MLA).
+inline std::unique_ptr<CameraModel> realLensCameraAt200mm() {
+  DisplayPose pose;
+  pose.distanceMm = 200.0;
+  ViewCameraOptions o;
+  o.width = 640;
+  return makeViewCamera(defaultCamera(), pose, o);
 }
 
 // The estimator's image of the setup is the same bit for bit on one and on two threads, and finite.

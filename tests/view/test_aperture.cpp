@@ -278,11 +278,7 @@ TEST(ViewAperture, RealLensAgreesWithThePointEstimator) {
   // the small display covers ~40 x 27 pixels (a pixel ~0.15 mm of the MLA). Mean and block
   // means over the display's pixels against the point estimator.
   RealSetup r;
-  DisplayPose pose;
-  pose.distanceMm = 200.0;
-  ViewCameraOptions o;
-  o.width = 640;
-  auto cam = makeViewCamera(defaultCamera(), pose, o);
+  auto cam = realLensCameraAt200mm();
   const Image a = r.render(PanelEstimator::PointSample, 1024, 1, 1.0, cam.get()).image;
   const ViewResult f = r.render(PanelEstimator::Aperture, 64, 3, 1.0, cam.get());
   int x0 = a.width, x1 = -1, y0 = a.height, y1 = -1;

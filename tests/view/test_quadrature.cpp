@@ -220,11 +220,7 @@ TEST(ViewQuadrature, UniformWhiteMatchesTheTransmittedEnergy) {
 TEST(ViewQuadrature, RealLensAgreesWithThePointEstimator) {
   // The default real lens (dispersive glass: one camera ray per primary) at 200 mm, 640 px.
   RealSetup r;
-  DisplayPose pose;
-  pose.distanceMm = 200.0;
-  ViewCameraOptions o;
-  o.width = 640;
-  auto cam = makeViewCamera(defaultCamera(), pose, o);
+  auto cam = realLensCameraAt200mm();
   const Image a = r.render(PanelEstimator::PointSample, 1024, 1, 1.0, cam.get()).image;
   const ViewResult q = r.render(PanelEstimator::Quadrature, 1, 1, 1.0, cam.get());
   double sa = 0.0, sq = 0.0;
