@@ -697,10 +697,14 @@ bool RealMla::traceToViewer(const Point3d& o, const Vec3d& d, double lambdaNm, R
 }
 
 bool RealMla::traceToPanel(const Ray& ray, float lambdaNm, Rng& rng, PanelArrival& out) const {
+  return traceToPanel(ray, lambdaNm, opt_.fresnel, &rng, out);
+}
+
+bool RealMla::traceToPanel(const Ray& ray, float lambdaNm, FresnelMode mode, Rng* rng, PanelArrival& out) const {
   const Vec3d d(ray.d);
   if (!(d.z < 0.0)) return false;
   MlaExit ex;
-  if (!trace(Point3d(ray.o), d, double(lambdaNm), opt_.fresnel, &rng, ex)) return false;
+  if (!trace(Point3d(ray.o), d, double(lambdaNm), mode, rng, ex)) return false;
   if (!(ex.d.z < 0.0)) return false;
   const double zp = -g_.gapMm;
   const double t = (zp - ex.p.z) / ex.d.z;

@@ -159,6 +159,8 @@ class RealMla final : public MlaModel {
 
   // MlaModel (backward: viewer -> panel). Fresnel per options().fresnel with `rng`.
   bool traceToPanel(const Ray& ray, float lambdaNm, Rng& rng, PanelArrival& out) const override;
+  // The same with an explicit Fresnel mode (Weighted: no random choice, rng may be null).
+  bool traceToPanel(const Ray& ray, float lambdaNm, FresnelMode mode, Rng* rng, PanelArrival& out) const;
   bool isDispersive() const override { return ior_->isDispersive(); }
   float frontZ() const override { return frontZf_; }  // rounded up: a ray from there starts in air
   // Any cell of the (unbounded) lattice. cellDepth: where the caps meet at the middle of a cell

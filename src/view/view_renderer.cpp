@@ -481,17 +481,8 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
       if (!area.contains(p.x, p.y)) return false;
       PanelArrival arr;
       if (weightedFresnel) {
-        MlaExit ex;
-        if (!realMla->trace(Point3d(p), Vec3d(r.d), double(lambda), FresnelMode::Weighted, nullptr, ex)) return false;
-        if (!(ex.d.z < 0.0)) return false;
-        const double zp = realMla->panelZ();
-        const double t = (zp - ex.p.z) / ex.d.z;
-        if (!(t >= 0.0)) return false;
-        arr.p = Point3(float(ex.p.x + t * ex.d.x), float(ex.p.y + t * ex.d.y), float(zp));
-        arr.d = Vec3(ex.d);
-        arr.throughput = float(ex.throughput);
-        arr.lensletK = ex.capK;
-        arr.lensletL = ex.capL;
+        if (!realMla->traceToPanel(Ray{p, r.d, 0.0f, kInfinity}, lambda, FresnelMode::Weighted, nullptr, arr))
+          return false;
       } else {
         Rng rng(0x5EEDull, 0);  // deterministic models ignore it
         if (!mla.traceToPanel(Ray{p, r.d, 0.0f, kInfinity}, lambda, rng, arr)) return false;
@@ -767,6 +758,17 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
         }
     };
 
+    // The wavelength of slot j of a dispersive sample and its pdf: primary j's importance
+    // sample, or the packet's j-th wavelength; false when it cannot carry light.
+    auto slotWavelength = [&](int j, float ul, const SampledWavelengths& wl, float& lambda, float& pdf) {
+      if (primaries) {
+        lambda = samplers[size_t(j)].sample(ul, pdf);
+      } else {
+        lambda = wl[j];
+        pdf = wl.pdf()[j];
+      }
+      return pdf > 0.0f;
+    };
     bool haveLastJ = false;  // the tile's last measured Jacobian, for pixels whose probe fails
     double lastJ[2][4] = {};
 
@@ -846,15 +848,7 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
           const int slots = dispersive ? raysPerSample : 1;
           for (int j = 0; j < slots; ++j) {
             float lambda = lambdaRef, pdf = 1.0f;
-            if (dispersive) {
-              if (primaries) {
-                lambda = samplers[size_t(j)].sample(ul, pdf);
-              } else {
-                lambda = wl[j];
-                pdf = wl.pdf()[j];
-              }
-              if (!(pdf > 0.0f)) continue;
-            }
+            if (dispersive && !slotWavelength(j, ul, wl, lambda, pdf)) continue;
             const int mask = dispersive && primaries ? (1 << j) : 7;
             std::array<float, kNumPrimaries> em{};
             // Aperture quadrature: the centre ray lands in a lenslet whose Jacobian is known.
@@ -946,13 +940,7 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
           if (!primaries) wl = SampledWavelengths::sampleVisible(ul);
           for (int j = 0; j < raysPerSample; ++j) {
             float lambda, pdf;
-            if (primaries) {
-              lambda = samplers[size_t(j)].sample(ul, pdf);
-            } else {
-              lambda = wl[j];
-              pdf = wl.pdf()[j];
-            }
-            if (!(pdf > 0.0f)) continue;
+            if (!slotWavelength(j, ul, wl, lambda, pdf)) continue;
             float w = wShared;
             if (!shareRay) {
               w = camera.generateRay(pix, lens, lambda, ray);
