@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "camera/camera_config.h"
 
 #include <cmath>
@@ -10,16 +11,6 @@
 namespace fs = std::filesystem;
 
 namespace inim {
-
-namespace {
-
-std::string fmt(double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
-
-}  // namespace
 
 std::string defaultCameraPath() { return dataPath("optics/cameras/alvium-1800-u-500c.json"); }
 
@@ -61,7 +52,7 @@ CameraDescription parseCameraDescription(const JsonObject& o, const LensLoadOpti
     c.fNumber = o.positive("f_number");
     const double widest = widestFNumber(c.lens);
     if (c.fNumber < widest * (1.0 - 1e-9))
-      o.fail("f_number", fmt(c.fNumber), "an f-number >= " + fmt(widest) + " (the lens's widest aperture)");
+      o.fail("f_number", formatNumber(c.fNumber), "an f-number >= " + formatNumber(widest) + " (the lens's widest aperture)");
   }
   c.distanceMm = o.positive("distance_mm", 350.0);
   if (o.has("focus_distance_mm")) {

@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "camera/camera_model.h"
 
 #include <cmath>
@@ -15,13 +16,7 @@ namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
 
-std::string fmt(double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
-
-std::string vecText(const Vec3d& v) { return "[" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) + "]"; }
+std::string vecText(const Vec3d& v) { return "[" + formatNumber(v.x) + ", " + formatNumber(v.y) + ", " + formatNumber(v.z) + "]"; }
 
 }  // namespace
 
@@ -40,7 +35,7 @@ const char* cameraModelName(CameraModelKind k) {
 CameraModel::CameraModel(const SensorGeometry& sensor, const ViewingPose& pose) : sensor_(sensor), pose_(pose) {
   if (sensor.widthPx < 1 || sensor.heightPx < 1 || !(sensor.pitchMm > 0.0))
     throw InputError("", "sensor", std::to_string(sensor.widthPx) + " x " + std::to_string(sensor.heightPx) + " px, pitch " +
-                         fmt(sensor.pitchMm) + " mm", "a sensor of at least 1 x 1 pixels with a pitch > 0");
+                         formatNumber(sensor.pitchMm) + " mm", "a sensor of at least 1 x 1 pixels with a pitch > 0");
   const Vec3d look = pose.lookAt - pose.eye;
   const double len = glm::length(look);
   if (!(len > 0.0) || !std::isfinite(len))
@@ -80,7 +75,7 @@ PinholeCameraModel::PinholeCameraModel(const SensorGeometry& sensor, const Viewi
                                        bool naturalVignetting)
     : CameraModel(sensor, pose), d_(imageDistanceMm), vignetting_(naturalVignetting) {
   if (!(d_ > 0.0) || !std::isfinite(d_))
-    throw InputError("", "image_distance_mm", fmt(d_), "a pinhole-to-sensor distance > 0");
+    throw InputError("", "image_distance_mm", formatNumber(d_), "a pinhole-to-sensor distance > 0");
 }
 
 float PinholeCameraModel::generateRay(Vec2 pixel, Vec2, float, Ray& out) const {
@@ -92,7 +87,7 @@ float PinholeCameraModel::generateRay(Vec2 pixel, Vec2, float, Ray& out) const {
 }
 
 std::string PinholeCameraModel::describe() const {
-  return "pinhole camera, image distance " + fmt(d_) + " mm, horizontal FOV " + fmt(horizontalFovDeg()) + " deg";
+  return "pinhole camera, image distance " + formatNumber(d_) + " mm, horizontal FOV " + formatNumber(horizontalFovDeg()) + " deg";
 }
 
 double PinholeCameraModel::horizontalFovDeg() const {
@@ -105,10 +100,10 @@ double PinholeCameraModel::horizontalFovDeg() const {
 ThinLensCameraModel::ThinLensCameraModel(const SensorGeometry& sensor, const ViewingPose& pose, double f, double N,
                                          double s, bool naturalVignetting)
     : CameraModel(sensor, pose), f_(f), n_(N), s_(s), vignetting_(naturalVignetting) {
-  if (!(f > 0.0) || !std::isfinite(f)) throw InputError("", "focal_length_mm", fmt(f), "a focal length > 0");
-  if (!(N > 0.0) || !std::isfinite(N)) throw InputError("", "f_number", fmt(N), "an f-number > 0");
+  if (!(f > 0.0) || !std::isfinite(f)) throw InputError("", "focal_length_mm", formatNumber(f), "a focal length > 0");
+  if (!(N > 0.0) || !std::isfinite(N)) throw InputError("", "f_number", formatNumber(N), "an f-number > 0");
   if (s_ <= 0.0) s_ = glm::length(pose.lookAt - pose.eye);
-  if (!(s_ > f)) throw InputError("", "focus_distance_mm", fmt(s_), "a focus distance > the focal length " + fmt(f));
+  if (!(s_ > f)) throw InputError("", "focus_distance_mm", formatNumber(s_), "a focus distance > the focal length " + formatNumber(f));
   sPrime_ = std::isinf(s_) ? f : f * s_ / (s_ - f);
   aperture_ = 0.5 * f / N;
 }
@@ -131,8 +126,8 @@ float ThinLensCameraModel::generateRay(Vec2 pixel, Vec2 uLens, float, Ray& out) 
 }
 
 std::string ThinLensCameraModel::describe() const {
-  return "thin-lens camera, f " + fmt(f_) + " mm, f/" + fmt(n_) + ", focused at " + fmt(s_) + " mm (sensor at " +
-         fmt(sPrime_) + " mm), horizontal FOV " + fmt(horizontalFovDeg()) + " deg";
+  return "thin-lens camera, f " + formatNumber(f_) + " mm, f/" + formatNumber(n_) + ", focused at " + formatNumber(s_) + " mm (sensor at " +
+         formatNumber(sPrime_) + " mm), horizontal FOV " + formatNumber(horizontalFovDeg()) + " deg";
 }
 
 double ThinLensCameraModel::horizontalFovDeg() const {
@@ -154,14 +149,14 @@ RealLensCameraModel::RealLensCameraModel(LensSystem lens, const SensorGeometry& 
   const double objectZ = std::isinf(focus_) ? -std::numeric_limits<double>::infinity() : zEP - focus_;
   const double frontZ = std::min(0.0, lens_.sag(0, lens_.surfaces().front().semiAperture()));
   if (!(objectZ < frontZ))
-    throw InputError(lens_.file(), "focus_distance_mm", fmt(focus_),
-                     "a focus distance beyond the front of the lens (> " + fmt(zEP - frontZ) +
+    throw InputError(lens_.file(), "focus_distance_mm", formatNumber(focus_),
+                     "a focus distance beyond the front of the lens (> " + formatNumber(zEP - frontZ) +
                          " mm from the entrance pupil)");
   const double d = focusSensorDistance(lens_, objectZ, settings.focusMode, lambda);
   const double rear = std::max(0.0, lens_.sag(lens_.surfaceCount() - 1, lens_.surfaces().back().semiAperture()));
   if (!(d > rear) || !std::isfinite(d))
-    throw InputError(lens_.file(), "focus_distance_mm", fmt(focus_),
-                     "a focus distance the lens can reach (the sensor would sit " + fmt(d) +
+    throw InputError(lens_.file(), "focus_distance_mm", formatNumber(focus_),
+                     "a focus distance the lens can reach (the sensor would sit " + formatNumber(d) +
                          " mm behind the last vertex)");
   lens_.setSensorDistanceMm(d);
 
@@ -239,10 +234,10 @@ float RealLensCameraModel::generateRay(Vec2 pixel, Vec2 uLens, float lambdaNm, R
 
 std::string RealLensCameraModel::describe() const {
   std::ostringstream o;
-  o << "real-lens camera: " << (lens_.name().empty() ? lens_.file() : lens_.name()) << ", EFL " << fmt(info_.eflMm)
-    << " mm, f/" << fmt(info_.fNumber) << ", focused (" << focusModeName(settings_.focusMode) << ") at "
-    << fmt(focus_) << " mm from the entrance pupil, sensor " << fmt(sensorDistanceMm())
-    << " mm behind the last vertex, horizontal FOV " << fmt(horizontalFovDeg()) << " deg";
+  o << "real-lens camera: " << (lens_.name().empty() ? lens_.file() : lens_.name()) << ", EFL " << formatNumber(info_.eflMm)
+    << " mm, f/" << formatNumber(info_.fNumber) << ", focused (" << focusModeName(settings_.focusMode) << ") at "
+    << formatNumber(focus_) << " mm from the entrance pupil, sensor " << formatNumber(sensorDistanceMm())
+    << " mm behind the last vertex, horizontal FOV " << formatNumber(horizontalFovDeg()) << " deg";
   return o.str();
 }
 

@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "camera/lens_focus.h"
 
 #include <cmath>
@@ -9,12 +10,6 @@
 namespace inim {
 
 namespace {
-
-std::string fmt(double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
 
 // Traces a grid of rays over the paraxial entrance pupil; `makeRay(x, y, zEP)` builds the ray
 // aimed at (x, y) on the entrance-pupil plane.
@@ -106,13 +101,13 @@ double widestFNumber(const LensSystem& lens, double lambdaNm) {
 
 double setFNumber(LensSystem& lens, double fNumber, double lambdaNm) {
   if (!(fNumber > 0.0) || !std::isfinite(fNumber))
-    throw InputError(lens.file(), "f_number", fmt(fNumber), "an f-number > 0");
+    throw InputError(lens.file(), "f_number", formatNumber(fNumber), "an f-number > 0");
   const LensInfo info = analyzeLens(lens, lambdaNm);
   const double stop = lens.stopDiameterMm() * (info.eflMm / fNumber) / info.entrancePupil.diameterMm;
   if (stop > lens.designStopDiameterMm() * (1.0 + 1e-9)) {
     const double n0 = info.fNumber * lens.stopDiameterMm() / lens.designStopDiameterMm();
-    throw InputError(lens.file(), "f_number", fmt(fNumber),
-                     "an f-number >= " + fmt(n0) + " (the widest aperture of the design's stop)");
+    throw InputError(lens.file(), "f_number", formatNumber(fNumber),
+                     "an f-number >= " + formatNumber(n0) + " (the widest aperture of the design's stop)");
   }
   lens.setStopDiameterMm(stop);
   return stop;

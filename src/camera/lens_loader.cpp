@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "camera/lens_loader.h"
 
 #include <algorithm>
@@ -16,12 +17,6 @@ namespace fs = std::filesystem;
 namespace inim {
 
 namespace {
-
-std::string fmt(double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
 
 std::string trim(const std::string& s) {
   size_t a = s.find_first_not_of(" \t\r\n");
@@ -153,13 +148,13 @@ LensSystem parsePbrtLens(const std::string& text, const std::string& file, const
     } else if (nd > 1.0 && nd < 5.0) {
       if (opt.pbrtDispersion == PbrtDispersion::Abbe) {
         s.medium = std::make_shared<CauchyIor>(CauchyIor::fromAbbe(nd, opt.abbeNumber));
-        s.mediumName = "n_d " + fmt(nd) + ", V_d " + fmt(opt.abbeNumber);
+        s.mediumName = "n_d " + formatNumber(nd) + ", V_d " + formatNumber(opt.abbeNumber);
       } else {
         s.medium = std::make_shared<ConstantIor>(float(nd));
-        s.mediumName = "n_d " + fmt(nd);
+        s.mediumName = "n_d " + formatNumber(nd);
       }
     } else {
-      throw InputError(file, where + ", column 'index'", fmt(nd), "an index n_d in (1, 5), or 0 or 1 for air");
+      throw InputError(file, where + ", column 'index'", formatNumber(nd), "an index n_d in (1, 5), or 0 or 1 for air");
     }
     rows.push_back(std::move(s));
   }
@@ -192,9 +187,9 @@ void readGlass(const JsonObject& s, LensSurface& out) {
   if (o.has("nd")) {
     double nd = o.number("nd");
     double vd = o.positive("vd");
-    if (!(nd > 1.0)) o.fail("nd", fmt(nd), "an index n_d > 1");
+    if (!(nd > 1.0)) o.fail("nd", formatNumber(nd), "an index n_d > 1");
     out.medium = std::make_shared<CauchyIor>(CauchyIor::fromAbbe(nd, vd));
-    out.mediumName = (label.empty() ? "" : label + ": ") + "n_d " + fmt(nd) + ", V_d " + fmt(vd);
+    out.mediumName = (label.empty() ? "" : label + ": ") + "n_d " + formatNumber(nd) + ", V_d " + formatNumber(vd);
   } else if (o.has("sellmeier_b")) {
     std::vector<double> B = o.numbers("sellmeier_b"), C = o.numbers("sellmeier_c");
     if (B.empty() || B.size() != C.size())
@@ -204,13 +199,13 @@ void readGlass(const JsonObject& s, LensSurface& out) {
     if (!(nd > 1.0f) || !std::isfinite(nd))
       o.fail("sellmeier_b", jsonValueText(o.raw("sellmeier_b")), "coefficients giving n_d > 1");
     out.medium = ior;
-    out.mediumName = (label.empty() ? "Sellmeier" : label) + ", n_d " + fmt(nd);
+    out.mediumName = (label.empty() ? "Sellmeier" : label) + ", n_d " + formatNumber(nd);
   } else if (o.has("n")) {
     double n = o.number("n");
-    if (!(n >= 1.0)) o.fail("n", fmt(n), "an index >= 1");
+    if (!(n >= 1.0)) o.fail("n", formatNumber(n), "an index >= 1");
     if (n > 1.0) {
       out.medium = std::make_shared<ConstantIor>(float(n));
-      out.mediumName = (label.empty() ? "" : label + ": ") + "n " + fmt(n);
+      out.mediumName = (label.empty() ? "" : label + ": ") + "n " + formatNumber(n);
     }
   } else {
     s.fail("glass", jsonValueText(g), "an object with nd and vd, sellmeier_b and sellmeier_c, or n");

@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "camera/lens_system.h"
 
 #include <algorithm>
@@ -10,12 +11,6 @@
 namespace inim {
 
 namespace {
-
-std::string fmt(double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
 
 constexpr double kTMin = -1e-9;  // sequential tracing: coincident surfaces are still crossed
 
@@ -241,24 +236,24 @@ void LensSystem::validate() const {
   for (int i = 0; i < n; ++i) {
     const LensSurface& s = surfaces_[size_t(i)];
     if (!std::isfinite(s.apertureMm) || !(s.apertureMm > 0.0))
-      fail(i, "aperture", fmt(s.apertureMm), "a clear aperture diameter > 0 mm");
-    if (!std::isfinite(s.radiusMm)) fail(i, "radius", fmt(s.radiusMm), "a finite radius (0 = flat)");
-    if (!std::isfinite(s.conic)) fail(i, "conic", fmt(s.conic), "a finite conic constant");
+      fail(i, "aperture", formatNumber(s.apertureMm), "a clear aperture diameter > 0 mm");
+    if (!std::isfinite(s.radiusMm)) fail(i, "radius", formatNumber(s.radiusMm), "a finite radius (0 = flat)");
+    if (!std::isfinite(s.conic)) fail(i, "conic", formatNumber(s.conic), "a finite conic constant");
     if (!std::isfinite(s.thicknessMm) || s.thicknessMm < 0.0)
-      fail(i, "thickness", fmt(s.thicknessMm), "a thickness >= 0 mm (vertices in order along the axis)");
+      fail(i, "thickness", formatNumber(s.thicknessMm), "a thickness >= 0 mm (vertices in order along the axis)");
     if (i + 1 < n && !s.isAir() && s.thicknessMm <= 0.0)
-      fail(i, "thickness", fmt(s.thicknessMm), "a glass thickness > 0 mm");
+      fail(i, "thickness", formatNumber(s.thicknessMm), "a glass thickness > 0 mm");
     if (i == n - 1 && !s.isAir())
       fail(i, "index", s.mediumName, "air after the last surface (image space)");
-    if (s.isStop && s.radiusMm != 0.0) fail(i, "radius", fmt(s.radiusMm), "a flat stop (radius 0)");
+    if (s.isStop && s.radiusMm != 0.0) fail(i, "radius", formatNumber(s.radiusMm), "a flat stop (radius 0)");
     const double c = s.curvature();
     if (c != 0.0) {
       const double a = s.semiAperture();
       if (1.0 - (1.0 + s.conic) * c * c * a * a < 0.0) {
-        std::string what = s.conic == 0.0 ? "|radius| >= aperture/2 = " + fmt(a) + " mm (a sphere of radius " +
-                                                fmt(std::abs(s.radiusMm)) + " mm cannot have this aperture)"
+        std::string what = s.conic == 0.0 ? "|radius| >= aperture/2 = " + formatNumber(a) + " mm (a sphere of radius " +
+                                                formatNumber(std::abs(s.radiusMm)) + " mm cannot have this aperture)"
                                           : "a conic surface defined over the whole aperture (1 - (1+k) c^2 (D/2)^2 >= 0)";
-        fail(i, "aperture", fmt(s.apertureMm), what);
+        fail(i, "aperture", formatNumber(s.apertureMm), what);
       }
     }
   }
@@ -268,9 +263,9 @@ void LensSystem::validate() const {
     const double zi = z_[size_t(i)] + sag(i, r);
     const double zj = z_[size_t(i + 1)] + sag(i + 1, r);
     if (zi > zj + 1e-9)
-      fail(i, "thickness", fmt(surfaces_[size_t(i)].thicknessMm),
+      fail(i, "thickness", formatNumber(surfaces_[size_t(i)].thicknessMm),
            "a thickness large enough that this surface and the next do not cross within their apertures "
-           "(they cross by " + fmt(zi - zj) + " mm at height " + fmt(r) + " mm)");
+           "(they cross by " + formatNumber(zi - zj) + " mm at height " + formatNumber(r) + " mm)");
   }
   // A near-axis ray from an object at infinity must pass.
   double minSemi = std::numeric_limits<double>::infinity();
@@ -280,9 +275,9 @@ void LensSystem::validate() const {
   TraceResult tr = trace(ray, kLensReferenceLambdaNm, TraceDirection::ObjectToImage);
   if (!tr.ok())
     fail(tr.surface, tr.status == TraceStatus::Aperture ? "aperture" : "radius",
-         tr.status == TraceStatus::Aperture ? fmt(surfaces_[size_t(tr.surface)].apertureMm)
-                                            : fmt(surfaces_[size_t(tr.surface)].radiusMm),
-         std::string("a lens that passes near-axis rays (a ray at height ") + fmt(h) + " mm is blocked here: " +
+         tr.status == TraceStatus::Aperture ? formatNumber(surfaces_[size_t(tr.surface)].apertureMm)
+                                            : formatNumber(surfaces_[size_t(tr.surface)].radiusMm),
+         std::string("a lens that passes near-axis rays (a ray at height ") + formatNumber(h) + " mm is blocked here: " +
              traceStatusName(tr.status) + ")");
   // The axial beam from infinity must be able to fill the stop: find the entrance height whose
   // ray reaches the stop edge (apertures off), then check every other aperture on it.
@@ -328,11 +323,11 @@ void LensSystem::validate() const {
       LensRay m2{{0.0, hi * f, -1.0}, {0.0, 0.0, 1.0}};
       (trace(m2, kLensReferenceLambdaNm, TraceDirection::ObjectToImage).ok() ? lo : up) = f;
     }
-    fail(stop_, "aperture", fmt(surfaces_[size_t(stop_)].apertureMm),
+    fail(stop_, "aperture", formatNumber(surfaces_[size_t(stop_)].apertureMm),
          "a stop the axial beam can fill: surface " + std::to_string(mr.surface) + " (" +
              (surfaces_[size_t(mr.surface)].source.empty() ? "" : surfaces_[size_t(mr.surface)].source + ", ") +
-             "aperture " + fmt(surfaces_[size_t(mr.surface)].apertureMm) + " mm, " + traceStatusName(mr.status) +
-             ") limits the axial beam to " + fmt(100.0 * lo) +
+             "aperture " + formatNumber(surfaces_[size_t(mr.surface)].apertureMm) + " mm, " + traceStatusName(mr.status) +
+             ") limits the axial beam to " + formatNumber(100.0 * lo) +
              " % of the stop radius (apertures inconsistent: the stop is larger than its neighbours allow)");
   }
 }

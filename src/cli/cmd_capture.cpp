@@ -67,7 +67,7 @@ void addCaptureCommand(CLI::App& app) {
     } else {
       // A scene's backdrop can dwarf what the display shows: frame the part of the scene the
       // display can show (its lenslet area, and depths within the default VCP).
-      Display d = loadDisplay(o->display.empty() ? defaultDisplayPath() : o->display);
+      Display d = loadDisplay(displayPathOrDefault(o->display));
       const EiLayout L = computeLayout(d);
       const auto a = L.activeArea();
       Point3 lo, hi;

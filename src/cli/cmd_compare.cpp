@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "core/format.h"
 #include "analysis/metrics.h"
 #include "cli/commands.h"
 #include "core/error.h"
@@ -77,8 +78,7 @@ void addCompareCommand(CLI::App& app) {
     co.ssimChannels = opts->ssim == "channels" ? SsimChannels::PerChannelMean : SsimChannels::Luminance;
     co.whiteLuminance = opts->white;
 
-    std::string mapExt = std::filesystem::path(opts->deMap).extension().string();
-    for (char& c : mapExt) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string mapExt = lowerExtension(opts->deMap);
     if (!opts->deMap.empty() && mapExt != ".exr")
       throw InputError("", "--de-map", opts->deMap, "an .exr file (the map holds unbounded float values)");
     const Image a = readImage(opts->a), b = readImage(opts->b);  // InputError for NaN / Inf

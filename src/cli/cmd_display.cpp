@@ -23,7 +23,7 @@ void addDisplayCommand(CLI::App& app) {
   info->add_option("FILE", opts->file, "Display JSON (default: optics/displays/paper-prototype.json)");
   info->add_flag("--json", opts->json, "Print JSON instead of text");
   info->callback([opts] {
-    const std::string path = opts->file.empty() ? defaultDisplayPath() : opts->file;
+    const std::string path = displayPathOrDefault(opts->file);
     Display d = loadDisplay(path);
     if (opts->json)
       std::printf("%s\n", displayInfoJson(d).dump(2).c_str());

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "core/format.h"
 #include "cli/commands.h"
 #include "cli/scene_options.h"
 #include "core/error.h"
@@ -33,24 +34,12 @@ namespace inim::cli {
 
 namespace {
 
-std::string lowerExt(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
 void requireExt(const std::string& path, const std::string& key, std::initializer_list<const char*> exts,
                 const std::string& what) {
-  std::string e = lowerExt(path);
+  std::string e = lowerExtension(path);
   for (const char* x : exts)
     if (e == x) return;
   throw InputError("", key, "\"" + path + "\"", what);
-}
-
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
 }
 
 }  // namespace
@@ -137,7 +126,7 @@ void addEiaCommand(CLI::App& app) {
     }
     s.placement = resolvePlacement(o->place, run.placement ? run.placement : lf.placement);
     s.vcpMm = vcpOpt->count() ? o->vcpMm : run.vcpMm.value_or(kDefaultVcpMm);
-    if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", num(s.vcpMm), "a finite distance in mm");
+    if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", formatNumber(s.vcpMm), "a finite distance in mm");
     s.spp = sppOpt->count() ? o->spp : run.spp.value_or(1);
     if (s.spp < 1) throw InputError("", "--spp", std::to_string(s.spp), "a whole number >= 1");
     s.seed = seedOpt->count() ? o->runOpts.seed : run.seed.value_or(o->runOpts.seed);
@@ -166,7 +155,7 @@ void addEiaCommand(CLI::App& app) {
     if (!o->sdf.empty()) requireExt(o->sdf, "--sdf", {".sdf", ".dat"}, "a Zemax source file name (.sdf or .dat)");
 
     // Display and layout.
-    std::string displayPath = !o->display.empty() ? o->display : run.display.value_or(defaultDisplayPath());
+    std::string displayPath = displayPathOrDefault(!o->display.empty() ? o->display : run.display.value_or(""));
     Display d = loadDisplay(displayPath);
     LayoutOverride lo;
     if (layoutOpt->count()) lo.layout = o->layout;
@@ -178,7 +167,7 @@ void addEiaCommand(CLI::App& app) {
     // Real-lens display rays.
     if (!o->realLens && (realRayOpt->count() || wlOpt->count()))
       throw InputError("", realRayOpt->count() ? "--real-lens-ray" : "--wavelength-nm",
-                       realRayOpt->count() ? "\"" + o->realLensRay + "\"" : num(o->wavelengthNm),
+                       realRayOpt->count() ? "\"" + o->realLensRay + "\"" : formatNumber(o->wavelengthNm),
                        "--real-lens as well (the pinhole model has no refraction)");
     RaySet realRays;
     RealLensRayOptions ro;
@@ -186,7 +175,7 @@ void addEiaCommand(CLI::App& app) {
     if (o->realLens) {
       ro.model = parseRealLensRayModel(o->realLensRay, "--real-lens-ray");
       if (!(o->wavelengthNm >= 360.0 && o->wavelengthNm <= 830.0))
-        throw InputError("", "--wavelength-nm", num(o->wavelengthNm), "a wavelength in 360-830 nm");
+        throw InputError("", "--wavelength-nm", formatNumber(o->wavelengthNm), "a wavelength in 360-830 nm");
       ro.wavelengthNm = o->wavelengthNm;
       std::unique_ptr<RealMla> mla = RealMla::fromDisplay(d, L, L.gapMm);
       ProgressBar bar("real-lens rays", uint64_t(L.numRays()), !o->quiet && ProgressBar::stderrIsTerminal());
@@ -211,14 +200,14 @@ void addEiaCommand(CLI::App& app) {
       if (L.isHex())
         std::printf("display:     %s (%s layout, hex lattice: %d rows of %d EIs, %d px across the flats, g = %s mm; "
                     "panel %d x %d px)\n",
-                    d.name.c_str(), layoutName(L.kind), L.eiRows, L.eiCols, d.eiWidthPx, num(L.gapMm).c_str(),
+                    d.name.c_str(), layoutName(L.kind), L.eiRows, L.eiCols, d.eiWidthPx, formatNumber(L.gapMm).c_str(),
                     L.panelW, L.panelH);
       else
         std::printf("display:     %s (%s layout, %d x %d EIs of %d x %d px, g = %s mm; panel %d x %d px)\n",
-                    d.name.c_str(), layoutName(L.kind), L.eiCols, L.eiRows, L.eiW, L.eiH, num(L.gapMm).c_str(),
+                    d.name.c_str(), layoutName(L.kind), L.eiCols, L.eiRows, L.eiW, L.eiH, formatNumber(L.gapMm).c_str(),
                     L.panelW, L.panelH);
       std::printf("field:       %s (%s)\n", lf.path.c_str(), lf.kind.c_str());
-      std::printf("placement:   %s; VCP at z = %s mm\n", s.placement.describe().c_str(), num(s.vcpMm).c_str());
+      std::printf("placement:   %s; VCP at z = %s mm\n", s.placement.describe().c_str(), formatNumber(s.vcpMm).c_str());
       if (o->realLens) std::printf("rays:        %s\n", summaryText(ro, realStats).c_str());
       std::fflush(stdout);
     }
@@ -277,7 +266,7 @@ void addEiaCommand(CLI::App& app) {
                     pv.crossingLenslets);
       if (!o->sdf.empty())
         std::printf(", %s (%llu triad rays at %s/%s/%s nm)", o->sdf.c_str(), (unsigned long long)triads,
-                    num(tw.nm[0]).c_str(), num(tw.nm[1]).c_str(), num(tw.nm[2]).c_str());
+                    formatNumber(tw.nm[0]).c_str(), formatNumber(tw.nm[1]).c_str(), formatNumber(tw.nm[2]).c_str());
       double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       std::printf("\ntotal:       %.2f s (loading %.2f s, synthesis %.2f s, writing %.2f s)\n", total, loadSeconds,
                   r.stats.seconds, writeSeconds);

@@ -90,7 +90,7 @@ void addFig11Command(CLI::App& app) {
     ThreadLimit threads(o->run.threads);
 
     // Inputs first: every error is reported before any work or output.
-    Display display = loadDisplay(o->display.empty() ? defaultDisplayPath() : o->display);
+    Display display = loadDisplay(displayPathOrDefault(o->display));
     EiLayout layout = computeLayout(display);
     std::string scenePath = o->scene.empty() ? defaultScenePath() : o->scene;
     LoadedField lf = loadField(scenePath, "--field");

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "core/format.h"
 #include "cli/commands.h"
 #include "cli/scene_options.h"
 #include "core/error.h"
@@ -34,8 +35,7 @@ namespace {
 enum class RayFormat { Text, Binary, FieldTable };
 
 RayFormat formatOf(const std::string& path, const std::string& key, bool forField = false) {
-  std::string ext = fs::path(path).extension().string();
-  for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lowerExtension(path);
   if (forField) {
     if (ext == ".npy" || ext == ".exr") return RayFormat::FieldTable;
     throw InputError("", key, "\"" + path + "\"", "with --for-field, a .npy or .exr ray table");
@@ -43,12 +43,6 @@ RayFormat formatOf(const std::string& path, const std::string& key, bool forFiel
   if (ext == ".txt") return RayFormat::Text;
   if (ext == ".irays") return RayFormat::Binary;
   throw InputError("", key, "\"" + path + "\"", "a file ending in .txt (Zemax ray text) or .irays (inim binary rays)");
-}
-
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
 }
 
 }  // namespace
@@ -143,16 +137,16 @@ void addRaysCommand(CLI::App& app) {
     } else {
       if (!o->realLens && (realRayOpt->count() || wlOpt->count()))
         throw InputError("", realRayOpt->count() ? "--real-lens-ray" : "--wavelength-nm",
-                         realRayOpt->count() ? "\"" + o->realLensRay + "\"" : num(o->wavelengthNm),
+                         realRayOpt->count() ? "\"" + o->realLensRay + "\"" : formatNumber(o->wavelengthNm),
                          "--real-lens as well (the pinhole model has no refraction)");
       RealLensRayOptions ro;
       if (o->realLens) {
         ro.model = parseRealLensRayModel(o->realLensRay, "--real-lens-ray");
         if (!(o->wavelengthNm >= 360.0 && o->wavelengthNm <= 830.0))
-          throw InputError("", "--wavelength-nm", num(o->wavelengthNm), "a wavelength in 360-830 nm");
+          throw InputError("", "--wavelength-nm", formatNumber(o->wavelengthNm), "a wavelength in 360-830 nm");
         ro.wavelengthNm = o->wavelengthNm;
       }
-      Display d = loadDisplay(o->display.empty() ? defaultDisplayPath() : o->display);
+      Display d = loadDisplay(displayPathOrDefault(o->display));
       LayoutOverride lo;
       if (layoutOpt->count()) lo.layout = o->layout;
       if (distOpt->count()) lo.viewingDistanceMm = o->viewingDistanceMm;
@@ -180,7 +174,7 @@ void addRaysCommand(CLI::App& app) {
         SynthesisSettings s;
         s.placement = resolvePlacement(o->place, run.placement);
         s.vcpMm = vcpOpt->count() ? o->vcpMm : run.vcpMm.value_or(kDefaultVcpMm);
-        if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", num(s.vcpMm), "a finite distance in mm");
+        if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", formatNumber(s.vcpMm), "a finite distance in mm");
         s.spp = sppOpt->count() ? o->spp : run.spp.value_or(1);
         if (s.spp < 1) throw InputError("", "--spp", std::to_string(s.spp), "a whole number >= 1");
         s.displayRays = o->realLens ? &realRays : nullptr;
@@ -191,7 +185,7 @@ void addRaysCommand(CLI::App& app) {
         writeRayTable(tmp, rec.table());
         count = rec.table().rays.size();
         what = "query rays of " + d.name + " (field frame; placement " + s.placement.describe() + ", VCP " +
-               num(s.vcpMm) + " mm, " + std::to_string(s.spp) + " spp; row = display ray x spp + sample)";
+               formatNumber(s.vcpMm) + " mm, " + std::to_string(s.spp) + " spp; row = display ray x spp + sample)";
       } else if (eiOpt->count() && o->realLens) {
         if (outFormat != RayFormat::Text)
           throw InputError("", "--ei", "\"" + o->ei + "\"", "--out FILE.txt (single-EI files are Zemax text)");

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "core/format.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/image.h"
@@ -30,12 +31,6 @@ void addTriadsCommand(CLI::App& app);
 
 namespace {
 
-std::string lowerExt(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
 struct DisplayOpts {
   std::string display, layout;
   double viewingDistanceMm = 0.0;
@@ -46,7 +41,7 @@ struct DisplayOpts {
     distOpt = cmd->add_option("--viewing-distance-mm", viewingDistanceMm, "Viewing distance D for toed-in");
   }
   EiLayout load(Display& d) const {
-    d = loadDisplay(display.empty() ? defaultDisplayPath() : display);
+    d = loadDisplay(displayPathOrDefault(display));
     LayoutOverride o;
     if (layoutOpt->count()) o.layout = layout;
     if (distOpt->count()) o.viewingDistanceMm = viewingDistanceMm;
@@ -82,7 +77,7 @@ void addTriadsCommand(CLI::App& app) {
   ex->callback([e] {
     ThreadLimit threads(e->run.threads);
     auto t0 = std::chrono::steady_clock::now();
-    if (lowerExt(e->out) != ".sdf" && lowerExt(e->out) != ".dat")
+    if (lowerExtension(e->out) != ".sdf" && lowerExtension(e->out) != ".dat")
       throw InputError("", "--out", "\"" + e->out + "\"", "a Zemax source file name (.sdf or .dat)");
     if (!(e->fluxScale > 0.0f) || !std::isfinite(e->fluxScale))
       throw InputError("", "--flux-scale", std::to_string(e->fluxScale), "a number > 0");
@@ -132,8 +127,8 @@ void addTriadsCommand(CLI::App& app) {
   fo->callback([f] {
     ThreadLimit threads(f->run.threads);
     auto t0 = std::chrono::steady_clock::now();
-    if (lowerExt(f->out) != ".exr") throw InputError("", "--out", "\"" + f->out + "\"", "an OpenEXR file name (.exr)");
-    if (!f->png.empty() && lowerExt(f->png) != ".png")
+    if (lowerExtension(f->out) != ".exr") throw InputError("", "--out", "\"" + f->out + "\"", "an OpenEXR file name (.exr)");
+    if (!f->png.empty() && lowerExtension(f->png) != ".png")
       throw InputError("", "--png", "\"" + f->png + "\"", "a PNG file name (.png)");
     Display d;
     EiLayout L = f->disp.load(d);

@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "core/format.h"
 #include "camera/camera_config.h"
 #include "cli/commands.h"
 #include "cli/scene_options.h"
@@ -35,18 +36,6 @@ namespace fs = std::filesystem;
 namespace inim::cli {
 
 namespace {
-
-std::string num(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
-
-std::string lowerExt(const std::string& path) {
-  std::string e = fs::path(path).extension().string();
-  for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
 
 // Options shared by `view` and `reference`: camera, pose, image size, samples, outputs.
 struct CameraPoseOpts {
@@ -97,10 +86,10 @@ struct CameraSetup {
 
 CameraSetup setupCamera(const CameraPoseOpts& o) {
   if (o.spp < 1) throw InputError("", "--spp", std::to_string(o.spp), "a whole number >= 1");
-  if (lowerExt(o.out) != ".exr") throw InputError("", "--out", "\"" + o.out + "\"", "an OpenEXR file name (.exr)");
+  if (lowerExtension(o.out) != ".exr") throw InputError("", "--out", "\"" + o.out + "\"", "an OpenEXR file name (.exr)");
   CameraSetup s;
   s.png = o.png.empty() ? fs::path(o.out).replace_extension(".png").string() : o.png;
-  if (lowerExt(s.png) != ".png") throw InputError("", "--png", "\"" + s.png + "\"", "a PNG file name (.png)");
+  if (lowerExtension(s.png) != ".png") throw InputError("", "--png", "\"" + s.png + "\"", "a PNG file name (.png)");
   s.exposure = parseExposure(o.exposure);
   if (o.width < 0) throw InputError("", "--width", std::to_string(o.width), "a whole number of pixels >= 1");
   if (o.height < 0) throw InputError("", "--height", std::to_string(o.height), "a whole number of pixels >= 1");
@@ -109,7 +98,7 @@ CameraSetup setupCamera(const CameraPoseOpts& o) {
   s.pose.rotVDeg = o.rotV;
   s.pose.distanceMm = o.distanceOpt->count() ? o.distanceMm : s.desc.distanceMm;
   if (!(s.pose.distanceMm > 0.0) || !std::isfinite(s.pose.distanceMm))
-    throw InputError("", "--distance-mm", num(s.pose.distanceMm), "a camera distance > 0 mm");
+    throw InputError("", "--distance-mm", formatNumber(s.pose.distanceMm), "a camera distance > 0 mm");
   ViewCameraOptions co;
   if (!o.cameraModel.empty())
     co.kind = o.cameraModel == "pinhole" ? CameraModelKind::Pinhole
@@ -119,7 +108,7 @@ CameraSetup setupCamera(const CameraPoseOpts& o) {
   co.height = o.height;
   co.focusMm = o.focusMm;
   if (o.focusMm < 0.0 || !std::isfinite(o.focusMm))
-    throw InputError("", "--focus-mm", num(o.focusMm), "a focus distance > 0 mm");
+    throw InputError("", "--focus-mm", formatNumber(o.focusMm), "a focus distance > 0 mm");
   s.camera = makeViewCamera(s.desc, s.pose, co);
   return s;
 }
@@ -140,7 +129,7 @@ double writeOutputs(const Image& cameraRgb, const CameraSetup& cs, const std::st
 void printCamera(const CameraSetup& cs) {
   std::printf("camera:      %s; %s\n", cs.desc.name.c_str(), cs.camera->describe().c_str());
   std::printf("image:       %d x %d px, pitch %s um; pose %s\n", cs.camera->width(), cs.camera->height(),
-              num(cs.camera->sensor().pitchMm * 1e3).c_str(), cs.pose.describe().c_str());
+              formatNumber(cs.camera->sensor().pitchMm * 1e3).c_str(), cs.pose.describe().c_str());
 }
 
 }  // namespace
@@ -203,19 +192,19 @@ void addViewCommand(CLI::App& app) {
     ThreadLimit threads(o->cam.run.threads);
     CameraSetup cs = setupCamera(o->cam);
     if (!(o->background >= 0.0) || !std::isfinite(o->background))
-      throw InputError("", "--background", num(o->background), "a luminance >= 0");
+      throw InputError("", "--background", formatNumber(o->background), "a luminance >= 0");
     if (!(o->cosN >= 0.0) || !std::isfinite(o->cosN))
-      throw InputError("", "--emission-cos-n", num(o->cosN), "an exponent >= 0");
+      throw InputError("", "--emission-cos-n", formatNumber(o->cosN), "an exponent >= 0");
 
-    Display d = loadDisplay(o->display.empty() ? defaultDisplayPath() : o->display);
+    Display d = loadDisplay(displayPathOrDefault(o->display));
     LayoutOverride lo;
     if (layoutOpt->count()) lo.layout = o->layout;
     if (distOpt->count()) lo.viewingDistanceMm = o->viewingDistanceMm;
     const EiLayout L = applyLayoutOverride(d, lo);
     const double g = gapOpt->count() ? o->gapMm : d.reconstructionGapMm;
-    if (!(g > 0.0) || !std::isfinite(g)) throw InputError("", "--gap-mm", num(g), "a gap > 0 mm");
+    if (!(g > 0.0) || !std::isfinite(g)) throw InputError("", "--gap-mm", formatNumber(g), "a gap > 0 mm");
 
-    const std::string ext = lowerExt(o->eia);
+    const std::string ext = lowerExtension(o->eia);
     if (ext != ".exr" && ext != ".png")
       throw InputError("", "--eia", "\"" + o->eia + "\"", "an EIA image: linear EXR (or encoded PNG)");
     if (!fs::exists(o->eia)) throw InputError(o->eia, "--eia", "\"" + o->eia + "\"", "an existing EIA image");
@@ -251,7 +240,7 @@ void addViewCommand(CLI::App& app) {
     if (vs.panelEstimator == PanelEstimator::Quadrature && cmd->count("--spp") == 0) vs.spp = 1;
 
     if (!o->cam.quiet) {
-      std::printf("display:     %s (g = %s mm, %s MLA%s)\n", d.name.c_str(), num(g).c_str(),
+      std::printf("display:     %s (g = %s mm, %s MLA%s)\n", d.name.c_str(), formatNumber(g).c_str(),
                   o->mla == "ideal" ? "ideal thin-lens" : "real refracting",
                   panel.hasCoverGlass() ? ", cover glass" : "");
       std::printf("eia:         %s (%d x %d px)\n", o->eia.c_str(), eia.width, eia.height);
@@ -291,7 +280,7 @@ void addViewCommand(CLI::App& app) {
                     (unsigned long long)r.stats.apertureRays);
       else
         std::printf("estimator:   %s\n", panelEstimatorName(vs.panelEstimator));
-      std::printf("exposure:    %s%s\n", num(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
+      std::printf("exposure:    %s%s\n", formatNumber(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
       std::printf("wrote:       %s, %s\n", o->cam.out.c_str(), cs.png.c_str());
     }
   });
@@ -331,7 +320,7 @@ void addReferenceCommand(CLI::App& app) {
     const Transform toDisplay = pl.toDisplay();  // singular placements fail here
     CameraSetup cs = setupCamera(o->cam);
 
-    Display d = loadDisplay(!o->display.empty() ? o->display : run.display.value_or(defaultDisplayPath()));
+    Display d = loadDisplay(displayPathOrDefault(!o->display.empty() ? o->display : run.display.value_or("")));
     const EiLayout L = computeLayout(d);
     const DisplayArea area = lensletArrayArea(L, d.mla.pitchMm);
 
@@ -356,7 +345,7 @@ void addReferenceCommand(CLI::App& app) {
       std::printf("rendered:    %d spp, %.2f s render, %.2f s total; %llu rays, %llu hit the scene\n", rs.spp,
                   r.stats.seconds, total, (unsigned long long)r.stats.tracedRays,
                   (unsigned long long)r.stats.emittingRays);
-      std::printf("exposure:    %s%s\n", num(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
+      std::printf("exposure:    %s%s\n", formatNumber(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
       std::printf("wrote:       %s, %s\n", o->cam.out.c_str(), cs.png.c_str());
     }
   });

@@ -44,5 +44,7 @@ struct Display {
 Display loadDisplay(const std::string& path);
 // optics/displays/paper-prototype.json.
 std::string defaultDisplayPath();
+// `path`, or the default display when it is empty.
+std::string displayPathOrDefault(const std::string& path);
 
 }  // namespace inim

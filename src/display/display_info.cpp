@@ -5,6 +5,7 @@
 #include <cstdarg>
 #include <cstdio>
 
+#include "display/cover_glass.h"
 #include "spectral/dispersion.h"
 
 namespace inim {
@@ -40,9 +41,8 @@ GapInfo gapInfo(const Display& d, const EiLayout& L, double f, double g) {
     r.referencePlaneKind = *r.referencePlaneMm > 0 ? "real" : "virtual";
   }
   r.pixelAngularPitchDeg = deg(std::atan(p / g));
-  if (d.panel.coverGlass && d.panel.coverGlass->thicknessMm > 0.0) {
-    const double n = MaterialCatalog::standard().dielectric(d.panel.coverGlass->material)->n(550.0f);
-    const double ge = g - d.panel.coverGlass->thicknessMm * (1.0 - 1.0 / n);
+  if (const CoverGlassOptics glass = coverGlassOptics(d, 550.0f); glass.present) {
+    const double ge = glass.opticalGap(g);
     r.opticalGapMm = ge;
     r.opticalViewingAngleDeg = deg(2.0 * std::atan(P / (2.0 * ge)));
     if (std::abs(ge - f) > 1e-9 * f) r.opticalReferencePlaneMm = ge * f / (ge - f);

@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "display/ei_layout.h"
 
 #include <algorithm>
@@ -11,12 +12,6 @@
 namespace inim {
 
 namespace {
-
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // Places `count` EIs of `n` pixels along one axis. `centrePx(k)` is the ideal EI centre in
 // pixels from the origin (the EIA centre), increasing with k and symmetric about 0. EI start
@@ -80,8 +75,8 @@ EiLayout computeHexLayout(const Display& d) {
     const double D = *d.viewingDistanceMm, m = 1.0 + g / D;
     a = P * m;
     if (a < E * (1.0 - 1e-12))
-      throw InputError(d.file, "viewing_distance_mm", num(D),
-                       "a distance whose toed-in EI pitch P (1 + g/D) = " + num(a) + " mm = " + num(a / p) +
+      throw InputError(d.file, "viewing_distance_mm", formatNumber(D),
+                       "a distance whose toed-in EI pitch P (1 + g/D) = " + formatNumber(a) + " mm = " + formatNumber(a / p) +
                            " px holds hex EIs " + std::to_string(d.eiWidthPx) +
                            " px wide without overlap; reduce ei_px or increase the lens pitch");
   }
@@ -284,9 +279,9 @@ EiLayout computeLayout(const Display& d) {
     if (ax.minStep < L.eiW || ay.minStep < L.eiH) {
       bool xs = ax.minStep < L.eiW;
       throw InputError(
-          d.file, "viewing_distance_mm", num(D),
-          "a distance whose toed-in EI pitch P (1 + g/D) = " + num(P * m) + " mm = " +
-              num(P * m / p) + " px holds EIs of " + std::to_string(xs ? L.eiW : L.eiH) +
+          d.file, "viewing_distance_mm", formatNumber(D),
+          "a distance whose toed-in EI pitch P (1 + g/D) = " + formatNumber(P * m) + " mm = " +
+              formatNumber(P * m / p) + " px holds EIs of " + std::to_string(xs ? L.eiW : L.eiH) +
               " px without overlap (rounded EI step " + std::to_string(xs ? ax.minStep : ay.minStep) +
               " px); reduce ei_px or increase the lens pitch");
     }

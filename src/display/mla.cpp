@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "display/mla.h"
 
 #include <cmath>
@@ -22,12 +23,6 @@ const char* orientationName(Mla::Orientation o) {
   return o == Mla::Orientation::CurvedTowardViewer ? "curved-toward-viewer" : "curved-toward-panel";
 }
 
-static std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
 LensletFocus lensletFocus(const Mla& m) {
   LensletFocus r;
   if (m.radiusMm) {
@@ -35,7 +30,7 @@ LensletFocus lensletFocus(const Mla& m) {
     double n = ior->n(float(kLambdaDNm));
     r.indexD = n;
     if (!(n > 1.0))
-      throw InputError(m.file, "material", "\"" + m.material + "\" (n_d = " + num(n) + ")",
+      throw InputError(m.file, "material", "\"" + m.material + "\" (n_d = " + formatNumber(n) + ")",
                        "a lens material with n_d > 1");
     r.focalFromRadiusMm = *m.radiusMm / (n - 1.0);
   }
@@ -45,10 +40,10 @@ LensletFocus lensletFocus(const Mla& m) {
     if (r.focalFromRadiusMm) {
       double rel = std::abs(*r.focalFromRadiusMm - *m.focalLengthMm) / *m.focalLengthMm;
       if (rel > 0.02)
-        throw InputError(m.file, "focal_length_mm", num(*m.focalLengthMm),
+        throw InputError(m.file, "focal_length_mm", formatNumber(*m.focalLengthMm),
                          "agreement within 2 % with radius_of_curvature_mm / (n_d - 1) = " +
-                             num(*m.radiusMm) + " / (" + num(*r.indexD) + " - 1) = " +
-                             num(*r.focalFromRadiusMm) + " mm (" + m.material + ")");
+                             formatNumber(*m.radiusMm) + " / (" + formatNumber(*r.indexD) + " - 1) = " +
+                             formatNumber(*r.focalFromRadiusMm) + " mm (" + m.material + ")");
     }
   } else {
     r.focalLengthMm = *r.focalFromRadiusMm;
@@ -76,7 +71,7 @@ Mla parseMla(const JsonObject& o) {
                                 : Mla::Aperture::Hex;
   m.apertureMm = o.positive("aperture_mm", m.pitchMm);
   if (m.apertureMm > m.pitchMm * (1.0 + 1e-9))
-    o.fail("aperture_mm", num(m.apertureMm), "an aperture <= pitch_mm (" + num(m.pitchMm) + ")");
+    o.fail("aperture_mm", formatNumber(m.apertureMm), "an aperture <= pitch_mm (" + formatNumber(m.pitchMm) + ")");
   m.substrateThicknessMm = o.positive("substrate_thickness_mm");
   m.material = o.string("material");
   m.orientation = o.choice("orientation", {"curved-toward-viewer", "curved-toward-panel"},
@@ -89,8 +84,8 @@ Mla parseMla(const JsonObject& o) {
                   : m.aperture == Mla::Aperture::Hex   ? m.apertureMm / std::sqrt(3.0)
                                                        : 0.5 * m.apertureMm;
     if ((1.0 + m.conic) * half * half >= *m.radiusMm * *m.radiusMm)
-      o.fail("radius_of_curvature_mm", num(*m.radiusMm),
-             "a radius whose cap covers the aperture (aperture half-diagonal " + num(half) + " mm)");
+      o.fail("radius_of_curvature_mm", formatNumber(*m.radiusMm),
+             "a radius whose cap covers the aperture (aperture half-diagonal " + formatNumber(half) + " mm)");
   }
   m.assumptions = readAssumptions(o);
   o.rejectUnknown();

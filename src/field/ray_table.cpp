@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "field/ray_table.h"
 
 #include <algorithm>
@@ -16,15 +17,9 @@ namespace {
 constexpr int kExrWidth = 4096;  // rows of a wrapped EXR table
 const std::vector<std::string> kRayChannels = {"ox", "oy", "oz", "dx", "dy", "dz", "near", "far"};
 
-std::string lowerExt(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
 // Rows of a table file as (rows, cols) floats, with the channel names for EXR.
 NpyArray readTable(const std::string& path, std::vector<std::string>& channels) {
-  const std::string ext = lowerExt(path);
+  const std::string ext = lowerExtension(path);
   if (ext == ".npy") return readNpy(path);
   if (ext != ".exr") throw InputError(path, "file", "\"" + path + "\"", "a .npy or .exr table");
   Image img = readImage(path, false);
@@ -64,7 +59,7 @@ void writeRayTable(const std::string& path, const RayTable& t) {
     row[3] = r.d.x, row[4] = r.d.y, row[5] = r.d.z;
     row[6] = r.tNear, row[7] = r.tFar;
   };
-  if (lowerExt(path) == ".npy") {
+  if (lowerExtension(path) == ".npy") {
     NpyArray a;
     a.rows = int64_t(n), a.cols = 8;
     a.data.resize(n * 8);

@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "mla/real_mla.h"
 
 #include <algorithm>
@@ -20,12 +21,6 @@ constexpr double kEps = 1e-9;
 constexpr double kTMin = 1e-10;
 constexpr double kLambdaTable0 = 300.0;
 constexpr int kLambdaTableN = 701;  // 300..1000 nm
-
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // Unpolarised Fresnel reflectance for cosines of incidence and transmission (both >= 0).
 inline double fresnelR(double cosi, double cost, double n1, double n2) {
@@ -66,12 +61,12 @@ struct RealMla::Hit {
 RealMla::RealMla(const RealMlaGeometry& g, IorPtr ior, const RealMlaOptions& o, const std::string& file)
     : g_(g), opt_(o), ior_(std::move(ior)) {
   auto fail = [&](const std::string& key, double v, const std::string& expected) {
-    throw InputError(file, key, num(v), expected);
+    throw InputError(file, key, formatNumber(v), expected);
   };
   if (!ior_) throw InputError(file, "material", "(none)", "a dielectric of spectra/materials.json");
   if (!(g.pitchMm > 0.0) || !std::isfinite(g.pitchMm)) fail("pitch_mm", g.pitchMm, "a pitch > 0 mm");
   if (!(g.apertureMm > 0.0) || g.apertureMm > g.pitchMm * (1.0 + 1e-9))
-    fail("aperture_mm", g.apertureMm, "an aperture > 0 and <= pitch_mm (" + num(g.pitchMm) + ")");
+    fail("aperture_mm", g.apertureMm, "an aperture > 0 and <= pitch_mm (" + formatNumber(g.pitchMm) + ")");
   if (!(g.radiusMm > 0.0) || !std::isfinite(g.radiusMm))
     fail("radius_of_curvature_mm", g.radiusMm, "a radius > 0 mm (convex cap)");
   if (!std::isfinite(g.conic)) fail("conic", g.conic, "a finite conic constant");
@@ -182,12 +177,12 @@ RealMla::RealMla(const RealMlaGeometry& g, IorPtr ior, const RealMlaOptions& o, 
   }
   if (!(K1_ * rMax_ * rMax_ < R_ * R_))
     fail("radius_of_curvature_mm", R_,
-         "a radius whose cap covers the aperture: (1 + conic) r^2 < R^2 with r = " + num(rMax_) +
+         "a radius whose cap covers the aperture: (1 + conic) r^2 < R^2 with r = " + formatNumber(rMax_) +
              " mm, the aperture's farthest point from the lenslet axis");
   sMax_ = capSag(rMax_);
   if (!(g.thicknessMm > sMax_ * (1.0 + 1e-9) + 1e-9))
     fail("substrate_thickness_mm", g.thicknessMm,
-         "a centre thickness larger than the cap depth s_max = " + num(sMax_) + " mm");
+         "a centre thickness larger than the cap depth s_max = " + formatNumber(sMax_) + " mm");
 
   const double T = g.thicknessMm;
   if (g.orientation == Mla::Orientation::CurvedTowardViewer) {
@@ -205,8 +200,8 @@ RealMla::RealMla(const RealMlaGeometry& g, IorPtr ior, const RealMlaOptions& o, 
   if (double(frontZf_) < frontZ_) frontZf_ = std::nextafter(frontZf_, std::numeric_limits<float>::infinity());
   if (!(-g.gapMm < backZ_ - 1e-9))
     fail("gap_mm", g.gapMm,
-         "a panel gap larger than " + num(-backZ_) + " mm: the panel must lie behind the MLA (its " +
-             (s_ > 0 ? std::string("flat face is at z = ") + num(backZ_) + " mm, T/n_d behind the reference plane)"
+         "a panel gap larger than " + formatNumber(-backZ_) + " mm: the panel must lie behind the MLA (its " +
+             (s_ > 0 ? std::string("flat face is at z = ") + formatNumber(backZ_) + " mm, T/n_d behind the reference plane)"
                      : std::string("cap vertices are on the reference plane)")));
 
   // The array's extent.

@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "scene/scene_loader.h"
 
 #include <algorithm>
@@ -224,8 +225,7 @@ ReflectanceTexture parseReflectance(const JsonObject& m, const std::string& key)
       ReflectanceTexture tex;
       if (tt == TextureType::Image) {
         std::string file = resolveFile(o, "file");
-        std::string ext = fs::path(file).extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+        const std::string ext = lowerExtension(file);
         bool floatFormat = ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff";
         std::string enc = o.choice("encoding", {"srgb", "linear"}, floatFormat ? "linear" : "srgb");
         bool repeat = o.boolean("repeat", false);

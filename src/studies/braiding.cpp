@@ -159,7 +159,7 @@ double zeroCrossing(const std::vector<double>& z, const std::vector<double>& b) 
 }  // namespace
 
 StudyReport runBraiding(const StudyOptions& o) {
-  const std::string displayPath = o.displayPath.empty() ? defaultDisplayPath() : o.displayPath;
+  const std::string displayPath = displayPathOrDefault(o.displayPath);
   const double g = 4.0, D = 350.0;
   Display d = cropDisplay(displayPath, 31, 31, g, EiLayoutKind::ToedIn, D);
   d.reconstructionGapMm = g;

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "display/cover_glass.h"
 #include "analysis/plot.h"
 #include "camera/camera_config.h"
 #include "core/error.h"
@@ -123,7 +124,7 @@ double bandCentre(const std::vector<double>& z, const std::vector<double>& v, do
 }  // namespace
 
 StudyReport runDepthSharpness(const StudyOptions& o) {
-  const std::string displayPath = o.displayPath.empty() ? defaultDisplayPath() : o.displayPath;
+  const std::string displayPath = displayPathOrDefault(o.displayPath);
   const double g = 4.0, D = 350.0;
   Display d = cropDisplay(displayPath, 25, 25, g, EiLayoutKind::ToedIn, D);
   d.reconstructionGapMm = g;
@@ -138,11 +139,10 @@ StudyReport runDepthSharpness(const StudyOptions& o) {
   // image it at L_eff = g_eff f / (g_eff - f); the synthesis's pinhole rays (in air, at g) make the
   // real chief rays g / g_eff steeper, so a target placed at z is rebuilt at z g_eff / g, and the
   // facets line up for the target depth z_g = L_eff g / g_eff = g f / (g_eff - f).
-  const bool hasGlass = d.panel.coverGlass.has_value() && d.panel.coverGlass->thicknessMm > 0.0;
-  const double tGlass = hasGlass ? d.panel.coverGlass->thicknessMm : 0.0;
-  const double nGlass =
-      hasGlass ? double(MaterialCatalog::standard().dielectric(d.panel.coverGlass->material)->n(550.0f)) : 1.0;
-  const double gEff = g - tGlass * (1.0 - 1.0 / nGlass);
+  const CoverGlassOptics glass = coverGlassOptics(d, 550.0f);
+  const bool hasGlass = glass.present;
+  const double tGlass = glass.thicknessMm, nGlass = glass.n;
+  const double gEff = glass.opticalGap(g);
   const double Leff = gEff * f / (gEff - f), zGlass = g * f / (gEff - f);
   // One magnified panel pixel on the target plane: the facet offsets it hides set the depth of
   // field of the reconstruction (a plateau of MTF50 around the sharpest depth).
@@ -321,7 +321,7 @@ StudyReport runDepthSharpness(const StudyOptions& o) {
         "target, at z + H').\n";
   md += "- With the panel's cover glass (" + fmt(tGlass, 2) + " mm of " + glassName + ", n = " + fmt(nGlass, 4) +
         " at 550 nm, on the emitting plane; `PanelEmitter` refracts every ray through it): the lenslets see the "
-        "panel t (1 − 1/n) = " + fmt(tGlass * (1.0 - 1.0 / nGlass), 3) + " mm nearer, at the optical gap g_eff = " +
+        "panel t (1 − 1/n) = " + fmt(g - gEff, 3) + " mm nearer, at the optical gap g_eff = " +
         fmt(gEff, 3) + " mm, and image it at L_eff = g_eff f / (g_eff − f) = " + fmt(Leff, 2) +
         " mm. The synthesis's pinhole rays run in air at g and do not see the glass, so the real chief rays are "
         "g / g_eff steeper and a target placed at z is rebuilt at z g_eff / g. The facets line up for the target "

@@ -72,7 +72,7 @@ double halfCrossing(const std::vector<double>& x, const std::vector<double>& y) 
 }  // namespace
 
 StudyReport runFlipOnset(const StudyOptions& o) {
-  const std::string displayPath = o.displayPath.empty() ? defaultDisplayPath() : o.displayPath;
+  const std::string displayPath = displayPathOrDefault(o.displayPath);
   Display d = loadDisplay(displayPath);
   EiLayout L = computeLayout(d);
   const double g = d.reconstructionGapMm, P = d.mla.pitchMm, f = lensletFocus(d.mla).focalLengthMm;

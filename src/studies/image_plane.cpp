@@ -95,7 +95,7 @@ double sharpestPlane(const Bundle& b) {
 }  // namespace
 
 StudyReport runImagePlane(const StudyOptions& o) {
-  const std::string displayPath = o.displayPath.empty() ? defaultDisplayPath() : o.displayPath;
+  const std::string displayPath = displayPathOrDefault(o.displayPath);
   Display d = loadDisplay(displayPath);
   EiLayout L = computeLayout(d);
   const double f = lensletFocus(d.mla).focalLengthMm, P = d.mla.pitchMm;

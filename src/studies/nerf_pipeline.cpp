@@ -148,7 +148,7 @@ StudyValue bound(const std::string& name, double measured, double threshold, boo
 StudyReport runNerfPipeline(const StudyOptions& o) {
   const auto tStart = Clock::now();
   const Budget B = budgetFor(o.quick);
-  const std::string displayPath = o.displayPath.empty() ? defaultDisplayPath() : o.displayPath;
+  const std::string displayPath = displayPathOrDefault(o.displayPath);
   const std::string scenePath = dataPath("scenes/paper-fig7.json");
   Display display = loadDisplay(displayPath);
   if (B.eiCols > 0) display.eiCols = std::min(display.eiCols, B.eiCols);

@@ -71,7 +71,7 @@ double barWidth(const Image& img, const CameraModel& cam, double z) {
 }  // namespace
 
 StudyReport runTelecentric(const StudyOptions& o) {
-  const std::string displayPath = o.displayPath.empty() ? defaultDisplayPath() : o.displayPath;
+  const std::string displayPath = displayPathOrDefault(o.displayPath);
   const double g = 4.0, D = 350.0;
   const Display base = loadDisplay(displayPath);
   const double P = base.mla.pitchMm, f = lensletFocus(base.mla).focalLengthMm;

@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "synthesis/display_overrides.h"
 
 #include <cmath>
@@ -18,9 +19,7 @@ EiLayout applyLayoutOverride(Display& d, const LayoutOverride& o) {
   if (o.viewingDistanceMm) {
     double D = *o.viewingDistanceMm;
     if (!(D > 0.0) || !std::isfinite(D)) {
-      char buf[40];
-      std::snprintf(buf, sizeof buf, "%.6g", D);
-      throw InputError("", o.distanceKey, buf, "a viewing distance > 0 mm");
+      throw InputError("", o.distanceKey, formatNumber(D), "a viewing distance > 0 mm");
     }
     d.viewingDistanceMm = D;
   }

@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "synthesis/placement.h"
 
 #include <cmath>
@@ -14,12 +15,7 @@ namespace inim {
 
 namespace {
 
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-std::string vecText(const Vec3d& v) { return num(v.x) + ", " + num(v.y) + ", " + num(v.z); }
+std::string vecText(const Vec3d& v) { return formatNumber(v.x) + ", " + formatNumber(v.y) + ", " + formatNumber(v.z); }
 bool finite(const Vec3d& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 }  // namespace
@@ -47,7 +43,7 @@ bool Placement::isIdentity() const {
 }
 
 std::string Placement::describe() const {
-  std::string s = scale.x == scale.y && scale.y == scale.z ? "scale " + num(scale.x) : "scale (" + vecText(scale) + ")";
+  std::string s = scale.x == scale.y && scale.y == scale.z ? "scale " + formatNumber(scale.x) : "scale (" + vecText(scale) + ")";
   return s + " mm/unit, rotate (" + vecText(rotateDeg) + ") deg, translate (" + vecText(translateMm) + ") mm";
 }
 
@@ -117,7 +113,7 @@ RunFile loadRunFile(const std::string& path) {
   if (o.has("scene")) r.scene = o.path("scene");
   if (o.has("vcp_mm")) {
     double v = o.number("vcp_mm");
-    if (!std::isfinite(v)) o.fail("vcp_mm", num(v), "a finite distance in mm");
+    if (!std::isfinite(v)) o.fail("vcp_mm", formatNumber(v), "a finite distance in mm");
     r.vcpMm = v;
   }
   if (o.has("viewing_distance_mm")) r.viewingDistanceMm = o.positive("viewing_distance_mm");

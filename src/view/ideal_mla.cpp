@@ -1,3 +1,4 @@
+#include "core/format.h"
 #include "view/ideal_mla.h"
 
 #include <cmath>
@@ -7,19 +8,11 @@
 
 namespace inim {
 
-namespace {
-std::string num(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
-}  // namespace
-
 IdealLensletMla::IdealLensletMla(const EiLayout& L, double pitchMm, double focalLengthMm, double gapMm)
     : K_(L.eiCols), L_(L.eiRows), pitch_(pitchMm), f_(focalLengthMm), g_(gapMm) {
-  if (!(pitch_ > 0.0) || !std::isfinite(pitch_)) throw InputError("", "mla.pitch_mm", num(pitch_), "a pitch > 0");
-  if (!(f_ > 0.0) || !std::isfinite(f_)) throw InputError("", "mla focal length", num(f_), "a focal length > 0 mm");
-  if (!(g_ > 0.0) || !std::isfinite(g_)) throw InputError("", "gap_mm", num(g_), "a gap > 0 mm");
+  if (!(pitch_ > 0.0) || !std::isfinite(pitch_)) throw InputError("", "mla.pitch_mm", formatNumber(pitch_), "a pitch > 0");
+  if (!(f_ > 0.0) || !std::isfinite(f_)) throw InputError("", "mla focal length", formatNumber(f_), "a focal length > 0 mm");
+  if (!(g_ > 0.0) || !std::isfinite(g_)) throw InputError("", "gap_mm", formatNumber(g_), "a gap > 0 mm");
   if (K_ < 1 || L_ < 1 || L.lensX.size() != size_t(K_) || L.lensY.size() != size_t(L_))
     throw InputError("", "ei_count", std::to_string(K_) + " x " + std::to_string(L_), "at least one lenslet");
   hex_ = L.isHex();

@@ -240,7 +240,7 @@ struct ViewSettings {
   // The panel estimator and, for Footprint, a scale on the box size (1: the box's variance
   // matches the sample's share, 1/spp, of the variance of the pixel's landing points; 0: a
   // point sample again, on the Footprint code path).
-  PanelEstimator panelEstimator = PanelEstimator::Footprint;
+  PanelEstimator panelEstimator = PanelEstimator::Quadrature;
   double footprintScale = 1.0;
   // Aperture and Quadrature: the aperture quadrature grid (G x G cells over the exit-pupil box;
   // ~0.8 G^2 points inside a round pupil) and the size, in pixels, of the blocks that share one
@@ -248,7 +248,7 @@ struct ViewSettings {
   // table's own error at the sensor's resolution (quadrature, 1 spp): 0.94% at G = 16 (against
   // 32), 1.75% at G = 12 (against 24); `inim view`, `fig11` and `bench` use 16, for 1.3x the
   // time of 12 (the tests' tolerances are stated at 12).
-  int apertureGrid = 12;
+  int apertureGrid = 16;
   int apertureBlock = 0;
   // Quadrature: wavelength nodes per primary when something is dispersive (each piece is traced
   // once per primary and node; 1: at the middle of each primary's spectrum, weighted by the

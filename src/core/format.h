@@ -1,0 +1,13 @@
+#pragma once
+// Text helpers shared by every stage: numbers in messages and reports, file extensions.
+#include <string>
+
+namespace inim {
+
+// A number as messages and reports print it: "%.6g" (shortest of fixed or exponent form).
+std::string formatNumber(double v);
+
+// The extension of a file name, lower-cased, with its dot (".exr"); "" when there is none.
+std::string lowerExtension(const std::string& path);
+
+}  // namespace inim
