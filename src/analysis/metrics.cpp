@@ -44,12 +44,6 @@ double sumInOrder(const std::vector<double>& v) {
 // ---------------------------------------------------------------------------------------
 // Masks and channels
 
-int64_t PixelMask::count() const {
-  int64_t n = 0;
-  for (uint8_t v : on) n += v ? 1 : 0;
-  return n;
-}
-
 PixelMask maskFromImage(const Image& img, const std::string& source) {
   int c = img.channelIndex("A");
   if (c < 0 && img.numChannels() == 1) c = 0;

@@ -20,20 +20,12 @@
 
 #include "core/image.h"
 #include "core/json_config.h"
+#include "core/pixel_mask.h"
 
 namespace inim {
 
 // ---------------------------------------------------------------------------------------
 // Masks and channels
-
-struct PixelMask {
-  int width = 0, height = 0;
-  std::vector<uint8_t> on;  // row-major, 1 = the pixel counts
-  std::string source;       // the file (or a description) for messages
-
-  bool counts(int x, int y) const { return on[size_t(y) * width + x] != 0; }
-  int64_t count() const;
-};
 
 // From a single-channel image (that channel) or an image with an "A" channel (alpha).
 // InputError naming `source` for any other image.

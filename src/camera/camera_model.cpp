@@ -18,6 +18,27 @@ constexpr double kPiD = 3.14159265358979323846;
 
 std::string vecText(const Vec3d& v) { return "[" + formatNumber(v.x) + ", " + formatNumber(v.y) + ", " + formatNumber(v.z) + "]"; }
 
+// Inverse of sampleUniformDiskConcentric (Shirley-Chiu): unit disk -> [0, 1)^2.
+Vec2d inverseConcentric(const Vec2d& d) {
+  const double r = std::sqrt(d.x * d.x + d.y * d.y);
+  if (r == 0.0) return Vec2d(0.5);
+  const double q = 3.14159265358979323846 / 4.0;
+  double phi = std::atan2(d.y, d.x);
+  Vec2d o;
+  if (phi >= -q && phi <= q) {
+    o = Vec2d(r, r * phi / q);
+  } else if (phi > q && phi <= 3.0 * q) {
+    o = Vec2d(r * (2.0 * q - phi) / q, r);
+  } else if (phi < -q && phi >= -3.0 * q) {
+    const double t = phi + 3.14159265358979323846;  // in [pi/4, 3pi/4]
+    o = Vec2d(-r * (2.0 * q - t) / q, -r);
+  } else {
+    const double t = phi > 0.0 ? phi - 3.14159265358979323846 : phi + 3.14159265358979323846;  // in [-pi/4, pi/4]
+    o = Vec2d(-r, -r * t / q);
+  }
+  return 0.5 * (o + Vec2d(1.0));
+}
+
 }  // namespace
 
 const char* cameraModelName(CameraModelKind k) {
@@ -54,6 +75,17 @@ float CameraModel::generateRay(int col, int row, Rng& rng, float lambdaNm, Ray& 
   const float jx = rng.uniform(), jy = rng.uniform();
   const float u = rng.uniform(), v = rng.uniform();
   return generateRay(Vec2(float(col) + jx, float(row) + jy), Vec2(u, v), lambdaNm, out);
+}
+
+bool CameraModel::apertureDomain(Vec2, Vec2d& lo, Vec2d& hi) const {
+  lo = Vec2d(0.0);
+  hi = Vec2d(1.0);
+  return true;
+}
+
+float CameraModel::apertureRay(Vec2 pixel, const Vec2d& a, float lambdaNm, Ray& out) const {
+  if (!(a.x >= 0.0 && a.y >= 0.0 && a.x < 1.0 && a.y < 1.0)) return 0.0f;
+  return generateRay(pixel, Vec2(float(a.x), float(a.y)), lambdaNm, out);
 }
 
 Vec2d CameraModel::uprightSensorOffset(Vec2 pixel) const {
@@ -123,6 +155,18 @@ float ThinLensCameraModel::generateRay(Vec2 pixel, Vec2 uLens, float, Ray& out) 
   }
   setRay(toWorld(lensPt), toWorldDir(dir), out);
   return vignetting_ ? float(cosT * cosT * cosT * cosT) : 1.0f;
+}
+
+bool ThinLensCameraModel::apertureDomain(Vec2, Vec2d& lo, Vec2d& hi) const {
+  lo = Vec2d(-1.0);
+  hi = Vec2d(1.0);
+  return true;
+}
+
+float ThinLensCameraModel::apertureRay(Vec2 pixel, const Vec2d& a, float lambdaNm, Ray& out) const {
+  if (!(a.x * a.x + a.y * a.y <= 1.0)) return 0.0f;
+  const Vec2d u = glm::clamp(inverseConcentric(a), Vec2d(0.0), Vec2d(0x1.fffffep-1));
+  return generateRay(pixel, Vec2(float(u.x), float(u.y)), lambdaNm, out) / float(3.14159265358979323846);
 }
 
 std::string ThinLensCameraModel::describe() const {
@@ -230,6 +274,38 @@ float RealLensCameraModel::generateRay(Vec2 pixel, Vec2 uLens, float lambdaNm, R
   if (w == 0.0) return 0.0f;
   out = lensToWorld(r);
   return float(w / e0_);
+}
+
+// The exit-pupil box of the pixel's radius, rotated to the pixel's azimuth, grown by 5%.
+bool RealLensCameraModel::apertureDomain(Vec2 pixel, Vec2d& lo, Vec2d& hi) const {
+  const Vec2d s = sensorPoint(pixel);
+  const double r = std::sqrt(s.x * s.x + s.y * s.y);
+  const PupilBox& b = bounds_.box(r);
+  if (b.empty) return false;
+  const double c = r > 0.0 ? s.x / r : 1.0, sn = r > 0.0 ? s.y / r : 0.0;
+  lo = Vec2d(1e300);
+  hi = Vec2d(-1e300);
+  for (int i = 0; i < 4; ++i) {
+    const Vec2d q((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y);
+    const Vec2d p(c * q.x - sn * q.y, sn * q.x + c * q.y);
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const Vec2d m = 0.05 * (hi - lo);
+  lo -= m;
+  hi += m;
+  return true;
+}
+
+// traceFromSensor's weight / (z^2 E0), z the sensor's distance from the rear-vertex plane:
+// irradiance per unit radiance per mm^2 of that plane, normalised like generateRay.
+float RealLensCameraModel::apertureRay(Vec2 pixel, const Vec2d& a, float lambdaNm, Ray& out) const {
+  LensRay lr;
+  const double w = traceFromSensor(sensorPoint(pixel), Point3d(a.x, a.y, bounds_.rearZ()), lambdaNm, lr);
+  if (!(w > 0.0)) return 0.0f;
+  out = lensToWorld(lr);
+  const double z = lens_.sensorZ() - bounds_.rearZ();
+  return float(w * (1.0 / (z * z * e0_)));
 }
 
 std::string RealLensCameraModel::describe() const {

@@ -59,6 +59,16 @@ class CameraModel {
   // Horizontal field of view (degrees) of the chief rays at the image edges.
   virtual double horizontalFovDeg() const = 0;
 
+  // The lens aperture in 2-D coordinates `a` in which ray generation is a fixed function of
+  // (pixel, a, wavelength), for quadrature over the aperture (view/estimators/aperture_table.h):
+  // the pinhole's lens sample in [0, 1)^2 (ignored), the thin lens's lens-plane point in units
+  // of its radius (the unit disk), the real lens's point on its rear-vertex plane (mm).
+  // apertureDomain: the box of `a` worth scanning for a pixel position (false: no ray passes).
+  // apertureRay: the ray through `a`, with its weight per unit area of `a` (0: blocked), so that
+  // the integral of the weight over the domain is the mean of generateRay's weight over uLens.
+  virtual bool apertureDomain(Vec2 pixel, Vec2d& lo, Vec2d& hi) const;
+  virtual float apertureRay(Vec2 pixel, const Vec2d& a, float lambdaNm, Ray& out) const;
+
   const SensorGeometry& sensor() const { return sensor_; }
   const ViewingPose& pose() const { return pose_; }
   int width() const { return sensor_.widthPx; }
@@ -115,6 +125,8 @@ class ThinLensCameraModel final : public CameraModel {
   double sensorDistanceMm() const { return sPrime_; }
   double focusDistanceMm() const { return s_; }
   double apertureRadiusMm() const { return aperture_; }
+  bool apertureDomain(Vec2 pixel, Vec2d& lo, Vec2d& hi) const override;
+  float apertureRay(Vec2 pixel, const Vec2d& a, float lambdaNm, Ray& out) const override;
 
  private:
   double f_, n_, s_, sPrime_, aperture_;
@@ -145,6 +157,8 @@ class RealLensCameraModel final : public CameraModel {
   CameraModelKind kind() const override { return CameraModelKind::RealLens; }
   std::string describe() const override;
   double horizontalFovDeg() const override;
+  bool apertureDomain(Vec2 pixel, Vec2d& lo, Vec2d& hi) const override;
+  float apertureRay(Vec2 pixel, const Vec2d& a, float lambdaNm, Ray& out) const override;
 
   // A ray from the sensor point (lens x, y, on the sensor plane) toward `rearPoint` on the
   // rear-vertex plane, traced out of the lens; returns cos^4(theta) x Fresnel (0 if blocked),

@@ -10,7 +10,7 @@
 //   eia-query/inim-field   the same query rays through Field::query
 //   view/E/spp:N           `inim view` of the default EIA (real MLA, real lens, 0 deg) at
 //                          --view-width, N spp (--view-spp), panel estimator E = point,
-//                          footprint, aperture or quadrature (--view-estimators); view/reference/E
+//                          footprint or quadrature (--view-estimators); view/reference/E
 //                          is the same estimator at --view-ref-spp (default 16x the largest N,
 //                          seed 2; aperture table grid --view-ref-grid, default --view-grid). The
 //                          table after the run gives each one's RMSE against its own reference
@@ -215,7 +215,7 @@ struct ViewContext {
   std::vector<int> spps = {1, 4, 16};
   std::vector<PanelEstimator> estimators = {PanelEstimator::PointSample, PanelEstimator::Footprint};
   int refSpp = 256;
-  int grid = 16, refGrid = 16;  // aperture table grid (aperture, quadrature) of the runs and the references
+  int grid = 16, refGrid = 16;  // aperture table grid (quadrature) of the runs and the references
   std::unique_ptr<DisplayModel> dm;
   CameraDescription desc;
   std::unique_ptr<CameraModel> camera;
@@ -313,7 +313,7 @@ void addBenchCommand(CLI::App& app) {
     double minTime = 0.5;
     int viewWidth = 648;
     std::vector<int> viewSpp = {1, 4, 16};
-    std::vector<std::string> viewEstimators = {"point", "footprint", "aperture", "quadrature"};
+    std::vector<std::string> viewEstimators = {"point", "footprint", "quadrature"};
     int viewRefSpp = 0;
     int viewGrid = 16, viewRefGrid = 0;
     RadianceBenchOptions radiance;
@@ -328,11 +328,11 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--view-spp", o->viewSpp, "Samples per pixel of the view/ benchmarks")
       ->delimiter(',')->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--view-estimators", o->viewEstimators, "Panel estimators of the view/ benchmarks")
-      ->delimiter(',')->check(CLI::IsMember({"point", "footprint", "aperture", "quadrature"}))->capture_default_str();
+      ->delimiter(',')->check(CLI::IsMember({"point", "footprint", "quadrature"}))->capture_default_str();
   cmd->add_option("--view-ref-spp", o->viewRefSpp,
                   "spp of view/reference (footprint estimator); 0: 16x the largest --view-spp")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
-  cmd->add_option("--view-grid", o->viewGrid, "Aperture table grid of the aperture and quadrature view/ runs")
+  cmd->add_option("--view-grid", o->viewGrid, "Aperture table grid of the quadrature view/ runs")
       ->check(CLI::Range(2, 64))->capture_default_str();
   cmd->add_option("--view-ref-grid", o->viewRefGrid,
                   "Aperture table grid of their references (0: --view-grid; larger: the table's own error shows "

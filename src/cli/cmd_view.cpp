@@ -166,14 +166,13 @@ void addViewCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--estimator", o->estimator,
                   "Panel estimator: point (subpixel under each ray), footprint (box average over the sample's "
-                  "share of the pixel footprint), aperture (camera aperture integrated by quadrature, pixel "
-                  "sampled), quadrature (pixel area, aperture and spectra all by quadrature, no noise; spp = "
+                  "share of the pixel footprint), quadrature (pixel area, aperture and spectra all by quadrature, no noise; spp = "
                   "strata per pixel, default 1) or auto (quadrature: the lowest error for the time at every width "
                   "in inim bench)")
-      ->check(CLI::IsMember({"point", "footprint", "aperture", "quadrature", "auto"}))
+      ->check(CLI::IsMember({"point", "footprint", "quadrature", "auto"}))
       ->capture_default_str();
   cmd->add_option("--aperture-grid", o->apertureGrid,
-                  "aperture and quadrature: the camera aperture's quadrature table, N x N cells over the exit pupil")
+                  "quadrature: the camera aperture's quadrature table, N x N cells over the exit pupil")
       ->check(CLI::Range(2, 64))->capture_default_str();
   cmd->add_option("--wavelength-nodes", o->wavelengthNodes,
                   "quadrature, when something is dispersive: wavelength nodes per primary (1: each primary's "
@@ -267,17 +266,12 @@ void addViewCommand(CLI::App& app) {
                   (unsigned long long)r.stats.tracedRays, (unsigned long long)r.stats.displayRays,
                   (unsigned long long)r.stats.panelRays, (unsigned long long)r.stats.emittingRays,
                   (unsigned long long)r.stats.culledPixels);
-      if (vs.panelEstimator == PanelEstimator::Aperture)
-        std::printf("estimator:   aperture: %llu rays integrated over the aperture, %llu fell back to sampling it, "
-                    "%llu table/Jacobian rays\n",
-                    (unsigned long long)r.stats.apertureSamples, (unsigned long long)r.stats.apertureFallbacks,
-                    (unsigned long long)r.stats.apertureRays);
-      else if (vs.panelEstimator == PanelEstimator::Quadrature)
+      if (vs.panelEstimator == PanelEstimator::Quadrature)
         std::printf("estimator:   quadrature: %llu pixel pieces integrated (%llu strata cut by a lenslet border), "
                     "%llu pieces x primaries lost by the MLA, %llu fallbacks, %llu table/Jacobian rays\n",
-                    (unsigned long long)r.stats.quadratureParts, (unsigned long long)r.stats.splitStrata,
-                    (unsigned long long)r.stats.lostParts, (unsigned long long)r.stats.apertureFallbacks,
-                    (unsigned long long)r.stats.apertureRays);
+                    (unsigned long long)r.stats.quadrature.pieces, (unsigned long long)r.stats.quadrature.splitStrata,
+                    (unsigned long long)r.stats.quadrature.lostPieces, (unsigned long long)r.stats.quadrature.fallbacks,
+                    (unsigned long long)r.stats.quadrature.probeRays);
       else
         std::printf("estimator:   %s\n", panelEstimatorName(vs.panelEstimator));
       std::printf("exposure:    %s%s\n", formatNumber(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
@@ -322,7 +316,7 @@ void addReferenceCommand(CLI::App& app) {
 
     Display d = loadDisplay(displayPathOrDefault(!o->display.empty() ? o->display : run.display.value_or("")));
     const EiLayout L = computeLayout(d);
-    const DisplayArea area = lensletArrayArea(L, d.mla.pitchMm);
+    const AreaMm area = L.activeArea();
 
     if (!o->cam.quiet) {
       std::printf("scene:       %s; placement %s\n", scenePath.c_str(), pl.describe().c_str());

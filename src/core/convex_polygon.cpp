@@ -1,4 +1,4 @@
-#include "view/convex_polygon.h"
+#include "core/convex_polygon.h"
 
 #include <cmath>
 

@@ -1,8 +1,8 @@
 #pragma once
-// A small convex polygon in the plane (the sensor's pixel coordinates, in the view renderer's
-// Quadrature estimator): a pixel, or a stratum of one, cut along the display's edge and the
-// lenslet borders, and the moments of each piece (its area, centroid and covariance, from which
-// the estimator places and sizes the piece's footprint on the panel).
+// A small convex polygon in the plane, clipped by half-planes, and its moments (area, centroid,
+// covariance). The view renderer's Quadrature estimator cuts a pixel stratum (sensor pixel
+// coordinates) along the display's edge and the lenslet borders with it, and places and sizes
+// each piece's footprint on the panel from the moments.
 //
 //   ConvexPolygon p = ConvexPolygon::rect(x, y, x + 1, y + 1);
 //   ConvexPolygon q = p.clipped({1.0, 0.0}, x + 0.3);   // the part with p.x <= x + 0.3

@@ -1,5 +1,5 @@
 #pragma once
-// Owen-scrambled Sobol points for the view renderers' per-pixel sample sets (pixel jitter,
+// Owen-scrambled Sobol points for per-pixel sample sets (the view renderers' pixel jitter,
 // lens position, wavelength): well stratified in every projection, so edges (subpixels, the
 // black matrix, lenslet borders) converge faster than with independent random numbers, and
 // unbiased, because every pixel's point set gets its own random nested scramble.

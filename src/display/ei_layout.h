@@ -48,6 +48,7 @@ struct EiPixelMap {
 // An axis-aligned rectangle in the display frame, mm.
 struct AreaMm {
   double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
+  bool contains(double x, double y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
 };
 
 struct EiLayout {

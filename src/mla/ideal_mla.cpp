@@ -1,10 +1,9 @@
-#include "core/format.h"
-#include "view/ideal_mla.h"
+#include "mla/ideal_mla.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace inim {
 
@@ -61,7 +60,7 @@ bool IdealLensletMla::lensletCell(double x, double y, LensletCell& out) const {
   return true;
 }
 
-bool IdealLensletMla::traceToPanel(const Ray& ray, float, Rng&, PanelArrival& out) const {
+bool IdealLensletMla::traceToPanel(const Ray& ray, float, FresnelMode, Rng*, PanelArrival& out) const {
   const Vec3d o(ray.o), d(ray.d);
   if (!(d.z < 0.0) || !(o.z >= 0.0)) return false;
   const double t = -o.z / d.z;

@@ -1,10 +1,9 @@
 #pragma once
-// The "pinhole-MLA" comparison model (DESIGN.md section 1, step 6; issue 4 item 4): every
-// lenslet an ideal paraxial thin lens of focal length f in the plane z = 0, at the physical
-// lens centres (EiLayout::lensXAt / lensYAt, pitch P) of the layout's lattice, each owning its
-// whole cell (fill factor 1): squares, or for a hex lattice pointy-top hexagons (rows
-// P sqrt(3)/2 apart, odd rows shifted by P/2, as RealMla; a point belongs to the nearest lens
-// centre). No refraction, no dispersion, no crosstalk, no Fresnel.
+// The "pinhole-MLA" comparison model (docs/design.md): every lenslet an ideal paraxial thin
+// lens of focal length f in the plane z = 0, at the physical lens centres (EiLayout::lensXAt /
+// lensYAt, pitch P) of the layout's lattice, each owning its whole cell (fill factor 1):
+// squares, or for a hex lattice pointy-top hexagons (rows P sqrt(3)/2 apart, odd rows shifted
+// by P/2, as RealMla; a point belongs to the nearest lens centre). No refraction, no dispersion, no crosstalk, no Fresnel.
 //
 // The ideal-lens mapping uses slopes (tangents): a ray crossing z = 0 at x in the cell of the
 // lens centred at c, with slope s = (dx/dz, dy/dz) on the panel side, leaves toward the viewer
@@ -27,7 +26,9 @@ class IdealLensletMla final : public MlaModel {
  public:
   // Lens centres from the layout (physical pitch), focal length f, panel at z = -gapMm.
   IdealLensletMla(const EiLayout& layout, double pitchMm, double focalLengthMm, double gapMm);
-  bool traceToPanel(const Ray& ray, float lambdaNm, Rng& rng, PanelArrival& out) const override;
+  using MlaModel::traceToPanel;
+  // No interfaces: `mode` and `rng` are ignored.
+  bool traceToPanel(const Ray& ray, float lambdaNm, FresnelMode mode, Rng* rng, PanelArrival& out) const override;
   bool isDispersive() const override { return false; }
   float frontZ() const override { return 0.0f; }
   bool lensletCell(double x, double y, LensletCell& out) const override;  // cells on z = 0

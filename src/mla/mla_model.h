@@ -3,10 +3,10 @@
 // simulation traces backwards: a camera ray reaches the display from the viewer's side and
 // an MlaModel carries it to the panel's emitting plane (z = -g in the display frame), where
 // the panel says what it emits there. Implementations:
-//   IdealLensletMla (view stage): each lenslet a paraxial thin lens of focal length f at
-//                                 z = 0: the "pinhole-MLA" comparison model, no refraction.
-//   RealMla (mla stage):          the plano-convex lenslets as refracting geometry: n(lambda),
-//                                 Fresnel, TIR, rays crossing into neighbouring lenslets.
+//   IdealLensletMla (ideal_mla.h): each lenslet a paraxial thin lens of focal length f at
+//                                  z = 0: the "pinhole-MLA" comparison model, no refraction.
+//   RealMla (real_mla.h):          the plano-convex lenslets as refracting geometry: n(lambda),
+//                                  Fresnel, TIR, rays crossing into neighbouring lenslets.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -15,6 +15,17 @@
 #include "core/rng.h"
 
 namespace inim {
+
+// How an MLA with refracting interfaces uses the unpolarised Fresnel reflectance R and
+// transmittance T = 1 - R at each interface:
+//   Stochastic: reflect with probability R, else refract, drawn from the caller's Rng.
+//               Throughput is unchanged (unbiased Monte Carlo); reflected rays keep being
+//               traced (they may enter a neighbour lenslet).
+//   Weighted:   always refract and multiply the throughput by T (deterministic, no Rng; the
+//               reflected energy is dropped). Total internal reflection still reflects.
+//   Off:        always refract, throughput 1 (an ideal anti-reflection coating).
+enum class FresnelMode { Stochastic, Weighted, Off };
+const char* fresnelModeName(FresnelMode m);  // "stochastic", "weighted", "off"
 
 struct PanelArrival {
   Point3 p;               // where the ray meets the panel's emitting plane z = -g (display frame, mm)
@@ -41,9 +52,17 @@ class MlaModel {
   virtual ~MlaModel() = default;
   // `ray` is in the display frame, starting in front of the MLA (z > its top) and heading
   // toward the panel (d.z < 0). Returns false if the ray does not reach the panel (reflected
-  // away, absorbed, TIR out, or blocked). `rng` drives stochastic choices (Fresnel
-  // reflect/transmit); it must be the caller's per-sample stream for determinism.
-  virtual bool traceToPanel(const Ray& ray, float lambdaNm, Rng& rng, PanelArrival& out) const = 0;
+  // away, absorbed, TIR out, or blocked). `mode` says how Fresnel reflection is handled (a
+  // model without interfaces ignores it); `rng` drives the Stochastic choices and must then be
+  // the caller's per-sample stream, for determinism (it may be null for the other modes).
+  virtual bool traceToPanel(const Ray& ray, float lambdaNm, FresnelMode mode, Rng* rng,
+                            PanelArrival& out) const = 0;
+  // The same with the model's own Fresnel mode.
+  bool traceToPanel(const Ray& ray, float lambdaNm, Rng& rng, PanelArrival& out) const {
+    return traceToPanel(ray, lambdaNm, fresnelMode(), &rng, out);
+  }
+  // The model's own Fresnel mode (RealMlaOptions::fresnel; Off for a model without interfaces).
+  virtual FresnelMode fresnelMode() const { return FresnelMode::Off; }
   // True when the result depends on wavelength (then each wavelength needs its own ray).
   virtual bool isDispersive() const = 0;
   // z of the MLA's front-most point (rays must start above it), display frame.

@@ -1,5 +1,5 @@
 #pragma once
-// Real-lens display rays (DESIGN.md section 1.2): for every pixel of every EI, the ray that
+// Real-lens display rays (docs/design.md): for every pixel of every EI, the ray that
 // actually leaves the refracting lenslet, traced through a RealMla at one wavelength. EI
 // (k, l) is seen through the *physical* lenslet (k, l), at the layout's lensX / lensY (for the
 // parallel layout that is the lens-grid geometry: the 1.0 mm lenses, not the EI-centred

@@ -42,15 +42,6 @@ double fresnelReflectance(double cosi, double n1, double n2) {
   return fresnelR(cosi, std::sqrt(1.0 - sin2t), n1, n2);
 }
 
-const char* fresnelModeName(FresnelMode m) {
-  switch (m) {
-    case FresnelMode::Stochastic: return "stochastic";
-    case FresnelMode::Weighted: return "weighted";
-    case FresnelMode::Off: return "off";
-  }
-  return "?";
-}
-
 struct RealMla::Hit {
   double t = 0.0;
   Vec3d n{0.0};  // unit normal, canonical frame, pointing out of the material
@@ -689,10 +680,6 @@ bool RealMla::traceToViewer(const Point3d& o, const Vec3d& d, double lambdaNm, R
   const FresnelMode mode = rng ? opt_.fresnel : FresnelMode::Weighted;
   if (!trace(o, d, lambdaNm, mode, rng, out, log)) return false;
   return out.d.z > 0.0;
-}
-
-bool RealMla::traceToPanel(const Ray& ray, float lambdaNm, Rng& rng, PanelArrival& out) const {
-  return traceToPanel(ray, lambdaNm, opt_.fresnel, &rng, out);
 }
 
 bool RealMla::traceToPanel(const Ray& ray, float lambdaNm, FresnelMode mode, Rng* rng, PanelArrival& out) const {

@@ -1,5 +1,5 @@
 #pragma once
-// RealMla: the microlens array as refracting geometry (DESIGN.md sections 1.6 and 2).
+// RealMla: the microlens array as refracting geometry (docs/design.md).
 //
 // Geometry. A lattice of identical lenslets (square, or hex with horizontal rows: "pointy-top"
 // cells whose flat sides are vertical, rows P sqrt(3)/2 apart, odd rows shifted by P/2) on a
@@ -20,7 +20,7 @@
 // Orientation. curved-toward-viewer: the caps face +z (the viewer), the flat face the panel.
 // curved-toward-panel: the caps face the panel.
 //
-// Reference plane (DESIGN.md section 2). The MLA sits so that every lenslet's object-side
+// Reference plane (docs/design.md). The MLA sits so that every lenslet's object-side
 // (panel-side) nodal point is on z = 0. Both sides are air, so nodal and principal points
 // coincide: for a plano-convex lens of index n, the panel-side principal plane H is T/n inside
 // the flat face (curved-toward-viewer) or at the cap vertex (curved-toward-panel); the
@@ -41,13 +41,7 @@
 // 300-1000 nm, linear interpolation); unpolarised Fresnel reflectance R = (Rs + Rp)/2 and
 // transmittance T = 1 - R (energy; the n^2 radiance factors cancel between two air spaces);
 // total internal reflection; optional Beer-Lambert absorption exp(-alpha * path in glass).
-// FresnelMode picks how R and T are used:
-//   Stochastic (default): reflect with probability R, else refract, using the caller's Rng.
-//                         Throughput is unchanged (unbiased Monte Carlo); reflected rays keep
-//                         being traced (they may enter a neighbour lenslet).
-//   Weighted:             always refract and multiply the throughput by T (deterministic,
-//                         no Rng; the reflected energy is dropped). TIR still reflects.
-//   Off:                  always refract, throughput 1 (ideal anti-reflection coating).
+// FresnelMode (mla_model.h) picks how R and T are used; Stochastic by default.
 // Up to `maxEvents` surface interactions (refractions, reflections, TIR bounces) are traced;
 // a ray still inside after that is lost. Every failure is a clean `false`: no NaN, no Inf and
 // no unbounded loop, for any finite ray (grazing, parallel to the panel, on cell edges).
@@ -77,9 +71,6 @@
 #include "spectral/dispersion.h"
 
 namespace inim {
-
-enum class FresnelMode { Stochastic, Weighted, Off };
-const char* fresnelModeName(FresnelMode m);
 
 // Unpolarised Fresnel reflectance R = (Rs + Rp) / 2 for light in index n1 meeting index n2 at
 // incidence cosine cosi (clamped to [0, 1]); 1 beyond the critical angle (TIR). The
@@ -157,10 +148,10 @@ class RealMla final : public MlaModel {
                                               const RealMlaOptions& o = {});
   static RealMlaGeometry geometryFor(const Display& display, const EiLayout& layout, double gapMm);
 
-  // MlaModel (backward: viewer -> panel). Fresnel per options().fresnel with `rng`.
-  bool traceToPanel(const Ray& ray, float lambdaNm, Rng& rng, PanelArrival& out) const override;
-  // The same with an explicit Fresnel mode (Weighted: no random choice, rng may be null).
-  bool traceToPanel(const Ray& ray, float lambdaNm, FresnelMode mode, Rng* rng, PanelArrival& out) const;
+  // MlaModel (backward: viewer -> panel); fresnelMode() is options().fresnel.
+  using MlaModel::traceToPanel;
+  bool traceToPanel(const Ray& ray, float lambdaNm, FresnelMode mode, Rng* rng, PanelArrival& out) const override;
+  FresnelMode fresnelMode() const override { return opt_.fresnel; }
   bool isDispersive() const override { return ior_->isDispersive(); }
   float frontZ() const override { return frontZf_; }  // rounded up: a ray from there starts in air
   // Any cell of the (unbounded) lattice. cellDepth: where the caps meet at the middle of a cell

@@ -18,7 +18,7 @@
 #include "studies/studies.h"
 #include "studies/study_common.h"
 #include "studies/study_pipeline.h"
-#include "view/ideal_mla.h"
+#include "mla/ideal_mla.h"
 
 namespace fs = std::filesystem;
 

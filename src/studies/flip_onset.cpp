@@ -19,7 +19,7 @@
 #include "studies/cover_glass.h"
 #include "studies/studies.h"
 #include "studies/study_common.h"
-#include "view/ideal_mla.h"
+#include "mla/ideal_mla.h"
 
 namespace fs = std::filesystem;
 

@@ -4,8 +4,8 @@
 
 #include "core/error.h"
 #include "display/mla.h"
+#include "mla/ideal_mla.h"
 #include "mla/real_mla.h"
-#include "view/ideal_mla.h"
 
 namespace inim {
 
@@ -22,11 +22,7 @@ DisplayModel makeDisplayModel(const Display& d, const EiLayout& L, const Image& 
     m.mla = std::make_unique<IdealLensletMla>(L, d.mla.pitchMm, lensletFocus(d.mla).focalLengthMm, m.gapMm);
   else
     m.mla = makeRealMla(d, L, m.gapMm);
-  m.area = lensletArrayArea(L, d.mla.pitchMm);
-  if (L.isHex()) {  // the hex lenslet array's bounding box (lensletArrayArea is square-only)
-    const AreaMm a = L.activeArea();
-    m.area = DisplayArea{a.x0, a.x1, a.y0, a.y1};
-  }
+  m.area = L.activeArea();
   return m;
 }
 

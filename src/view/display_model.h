@@ -25,7 +25,7 @@ struct DisplayModel {
   double gapMm = 0.0;                   // panel (z = -g) to the MLA reference plane
   std::unique_ptr<PanelEmitter> panel;  // the EIA on the panel's subpixels
   std::unique_ptr<MlaModel> mla;
-  DisplayArea area;                     // the lenslet array: what counts as "on the display"
+  AreaMm area;                          // the lenslet array (EiLayout::activeArea): "on the display"
 };
 
 // `gapMm` <= 0: the display's reconstruction gap. The ideal MLA takes the lenslets' paraxial

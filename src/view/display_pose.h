@@ -1,5 +1,5 @@
 #pragma once
-// The paper's gimbal (DESIGN.md section 3, "Viewing poses"): the display turns about its centre
+// The paper's gimbal (docs/design.md, viewing poses): the display turns about its centre
 // (the display-frame origin) while the camera stays put on the world +z axis, looking at the
 // origin with y up.
 //

@@ -6,7 +6,7 @@
 //   PanelEmission em = e.emit(arrival, lambdaNm);          // from an MlaModel arrival
 //   float L = em.weight * e.channelSpectrum(em.channel, lambdaNm);
 //
-// Model (DESIGN.md section 1, step 6):
+// Model (docs/design.md):
 //  - Pixels. EIA pixel (c, r) is panel pixel (panelCol0 + c, panelRow0 + r); its centre is at
 //    x = (c + 0.5 - eiaW/2) p, y = (eiaH/2 - r - 0.5) p (ei_layout.h). Points off the panel
 //    emit nothing.

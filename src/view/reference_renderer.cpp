@@ -11,7 +11,7 @@
 #include "core/progress.h"
 #include "core/rng.h"
 #include "spectral/color.h"
-#include "view/qmc.h"
+#include "core/qmc.h"
 
 namespace inim {
 
