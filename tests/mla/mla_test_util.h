@@ -1,8 +1,10 @@
 #pragma once
-// Shared helpers for the real-MLA tests: small lens arrays built in code.
+// Shared helpers for the MLA tests: small lens arrays and displays built in code.
 #include <cmath>
 #include <memory>
 
+#include "display/display.h"
+#include "display/ei_layout.h"
 #include "mla/real_mla.h"
 #include "spectral/dispersion.h"
 
@@ -42,6 +44,27 @@ inline std::unique_ptr<RealMla> makeMla(const Spec& s) {
   g.originYMm = (s.rows / 2) * rowH;
   g.gapMm = s.gap;
   return std::make_unique<RealMla>(g, pmma(), s.options, "(test MLA)");
+}
+
+// A small square-lattice display on the default display's panel and MLA material: K x R EIs
+// of n x n pixels of `pixelMm`, lens pitch P, focal length f, gap g, the panel `border` px
+// larger than the EIA on each side.
+inline Display smallDisplay(int K, int R, int n, double pixelMm, double P, double f, double g, int border = 4) {
+  Display d = loadDisplay(defaultDisplayPath());
+  d.file = "small-test-display";
+  d.panel.pixelPitchMm = pixelMm;
+  d.panel.widthPx = K * n + 2 * border;
+  d.panel.heightPx = R * n + 2 * border;
+  d.mla.pitchMm = P;
+  d.mla.apertureMm = P;
+  d.mla.focalLengthMm = f;
+  d.mla.radiusMm.reset();
+  d.generationGapMm = d.reconstructionGapMm = g;
+  d.eiWidthPx = d.eiHeightPx = n;
+  d.eiCols = K;
+  d.eiRows = R;
+  d.layout = EiLayoutKind::Parallel;
+  return d;
 }
 
 inline Spec spec(Mla::Orientation o) {

@@ -167,7 +167,7 @@ TEST(RealMla, HexLatticeAndCircularAperturesFocus) {
   }
 }
 
-// Reference plane (DESIGN.md section 2): the panel-side nodal point of every lenslet is on
+// Reference plane (docs/design.md): the panel-side nodal point of every lenslet is on
 // z = 0. A ray from a panel point aimed at (x_c, y_c, 0) leaves parallel to itself (the
 // pinhole ray's direction), with a difference that vanishes like the cube of the offset, and
 // its exit line crosses the axis at the rear nodal point z = T (n - 1)/n.

@@ -1,6 +1,6 @@
 #pragma once
 // The small real-MLA setup the panel-estimator tests share (test_footprint.cpp,
-// test_aperture.cpp), and the image statistics they compare with.
+// test_quadrature.cpp, test_estimators.cpp), and the image statistics they compare with.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,16 +17,6 @@
 
 namespace view_test {
 using namespace inim;
-
-// A patterned panel-sized EIA: values from 0 to 1 that change from pixel to pixel and channel
-// to channel (the hardest case for a panel estimator: every subpixel differs).
-inline Image patternEia(const EiLayout& L) {
-  Image eia = uniformEia(L, 0, 0, 0);
-  for (int y = 0; y < L.panelH; ++y)
-    for (int x = 0; x < L.panelW; ++x)
-      for (int c = 0; c < 3; ++c) eia.at(x, y, c) = float(((x * 7 + y * 3 + c * 5) % 11) / 10.0);
-  return eia;
-}
 
 // A small display behind a real refracting MLA (with cover glass: dispersive, 3 rays per
 // sample), seen by a thin-lens camera of the default camera's f/4 and 12 mm focal length from
@@ -60,6 +50,7 @@ struct RealSetup {
     pose.eye = {0.0, 0.0, D};
     camera = std::make_unique<ThinLensCameraModel>(s, pose, 12.0, 4.0, D);
   }
+  // The tolerances of the tests on this setup are stated at aperture grid 12.
   ViewResult render(PanelEstimator e, int spp, uint64_t seed = 1, double scale = 1.0,
                     const CameraModel* cam = nullptr, const MlaModel* otherMla = nullptr) const {
     ViewSettings s;
@@ -68,8 +59,9 @@ struct RealSetup {
     s.progress = false;
     s.panelEstimator = e;
     s.footprintScale = scale;
+    s.apertureGrid = 12;
     return renderView(cam ? *cam : *camera, defaultCamera().sensor, otherMla ? *otherMla : *mla, *panel,
-                      lensletArrayArea(layout, P), s);
+                      layout.activeArea(), s);
   }
 };
 

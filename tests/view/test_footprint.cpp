@@ -1,8 +1,7 @@
-// The Footprint panel estimator (view_renderer.h): the emitter's exact box average
-// (PanelEmitter::boxAveragePx, rectangles and clipped polygons), and the renderer's agreement
-// with the point-sampling reference estimator: the same image at high spp (region means and
-// RMSE), energy (uniform white), a zero box reproducing the point estimator bit for bit, and
-// determinism across thread counts.
+// The Footprint panel estimator (estimators/footprint_estimator.h) against the point-sampling
+// reference estimator: the same image at high spp (region means and RMSE), energy (uniform
+// white), a zero box reproducing the point estimator bit for bit. Thread-count determinism is
+// tested in test_estimators.cpp, the emitter's box averages in test_panel_emitter.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,9 +10,8 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
-#include "core/rng.h"
+#include "mla/ideal_mla.h"
 #include "mla/real_mla.h"
-#include "view/ideal_mla.h"
 #include "view/panel_emitter.h"
 #include "view/view_renderer.h"
 #include "real_setup.h"
@@ -22,95 +20,11 @@
 using namespace inim;
 using namespace view_test;
 
-namespace {
-
-// Dense midpoint-grid average of lookupPx over a box, per channel.
-std::array<double, 3> gridAverage(const PanelEmitter& e, double u0, double v0, double u1, double v1, int n) {
-  std::array<double, 3> s{0, 0, 0};
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const PanelEmission em = e.lookupPx(u0 + (i + 0.5) / n * (u1 - u0), v0 + (j + 0.5) / n * (v1 - v0));
-      if (em.channel >= 0) s[size_t(em.channel)] += em.weight;
-    }
-  for (auto& v : s) v /= double(n) * n;
-  return s;
-}
-
-void checkBoxAverages(const Display& d, const char* name) {
-  const EiLayout L = computeLayout(d);
-  PanelEmitter e(d.panel, L, patternEia(L), "pattern.exr", 1.2);
-  Rng rng(7, 3);
-  double worst = 0.0;
-  for (int i = 0; i < 60; ++i) {
-    // Boxes from 0.05 to 3 px, anywhere on the panel and across its edges.
-    const double w = 0.05 + 2.95 * rng.uniformDouble(), h = 0.05 + 2.95 * rng.uniformDouble();
-    const double u0 = -1.0 + (L.panelW + 1.0) * rng.uniformDouble(), v0 = -1.0 + (L.panelH + 1.0) * rng.uniformDouble();
-    const auto a = e.boxAveragePx(u0, v0, u0 + w, v0 + h);
-    const auto g = gridAverage(e, u0, v0, u0 + w, v0 + h, 600);
-    for (int c = 0; c < 3; ++c) {
-      worst = std::max(worst, std::abs(a[size_t(c)] - g[size_t(c)]));
-      EXPECT_NEAR(a[size_t(c)], g[size_t(c)], 4e-3) << name << " box " << i << " channel " << c;
-    }
-  }
-  std::printf("[ measured ] %s: largest |box average - 600 x 600 grid average| = %.2g\n", name, worst);
-}
-
-}  // namespace
-
-TEST(PanelEmitterBox, StripeBoxAverageIsTheAreaIntegral) {
-  checkBoxAverages(smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2), "rgb stripe");
-}
-
-TEST(PanelEmitterBox, DiamondBoxAverageIsTheAreaIntegral) {
-  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
-  d.panel.subpixels = diamondLayout(0.8);
-  checkBoxAverages(d, "diamond (clipped polygons)");
-}
-
-TEST(PanelEmitterBox, WholeTilesOfWhiteGiveTheFillFactorAndZeroBoxesThePoint) {
-  for (bool diamond : {false, true}) {
-    Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
-    if (diamond) d.panel.subpixels = diamondLayout(0.8);
-    const EiLayout L = computeLayout(d);
-    PanelEmitter e(d.panel, L, uniformEia(L, 1, 1, 1), "white.exr", 1.2);
-    const int t = diamond ? 2 : 1;
-    const auto a = e.boxAveragePx(2.0 * t, 4.0 * t, 5.0 * t, 6.0 * t);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[size_t(c)], 1.0 / e.areaFactor(c), 1e-6) << c;
-    // Half of the box off the panel's left edge: half the light.
-    const auto h = e.boxAveragePx(-3.0 * t, 4.0 * t, 3.0 * t, 6.0 * t);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(h[size_t(c)], 0.5 / e.areaFactor(c), 1e-6) << c;
-    EXPECT_EQ(e.boxAveragePx(-5.0, -5.0, -1.0, -1.0)[0], 0.0f);
-  }
-  // A box of zero area is the point lookup, and emit() is lookupPx at emissionPointPx.
-  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
-  d.panel.coverGlass = CoverGlass{0.3, "N-BK7"};
-  const EiLayout L = computeLayout(d);
-  PanelEmitter e(d.panel, L, patternEia(L), "pattern.exr", 1.2);
-  Rng rng(11, 5);
-  for (int i = 0; i < 500; ++i) {
-    const double u = L.panelW * rng.uniformDouble(), v = L.panelH * rng.uniformDouble();
-    const PanelEmission p = e.lookupPx(u, v);
-    const auto b = e.boxAveragePx(u, v, u, v);
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(b[size_t(c)], p.channel == c ? p.weight : 0.0f);
-    const Point3 pt(float((u - 0.5 * L.eiaW - L.panelCol0) * L.pixelMm),
-                    float((0.5 * L.eiaH + L.panelRow0 - v) * L.pixelMm), -1.2f);
-    const Vec3 dir = glm::normalize(Vec3(float(rng.uniform() - 0.5), float(rng.uniform() - 0.5), -1.0f));
-    Vec2d uv;
-    float factor = 0.0f;
-    ASSERT_TRUE(e.emissionPointPx(pt, dir, 550.0f, uv, factor));
-    const PanelEmission em = e.emit(pt, dir, 550.0f), lk = e.lookupPx(uv.x, uv.y);
-    EXPECT_EQ(em.channel, lk.channel);
-    if (lk.channel >= 0 && lk.weight > 0.0f) {
-      EXPECT_EQ(em.weight, lk.weight * factor);
-    }
-  }
-}
-
 TEST(ViewFootprint, ZeroBoxIsBitIdenticalToThePointEstimator) {
   RealSetup r;
   const Image point = r.render(PanelEstimator::PointSample, 4).image;
   const ViewResult zero = r.render(PanelEstimator::Footprint, 4, 1, 0.0);
-  EXPECT_GT(zero.stats.probeRays, 0u);
+  EXPECT_GT(zero.stats.footprint.probeRays, 0u);
   ASSERT_EQ(point.data.size(), zero.image.data.size());
   EXPECT_EQ(std::memcmp(point.data.data(), zero.image.data.data(), point.data.size() * sizeof(float)), 0);
 }
@@ -141,7 +55,8 @@ TEST(ViewFootprint, UniformWhiteIsThePanelWhiteAndEqualsThePointEstimator) {
   ViewSettings s;
   s.spp = 1024;
   s.progress = false;
-  ViewResult r = renderView(*cam, defaultCamera().sensor, mla, panel, lensletArrayArea(L, P), s);
+  s.panelEstimator = PanelEstimator::Footprint;
+  ViewResult r = renderView(*cam, defaultCamera().sensor, mla, panel, L.activeArea(), s);
   for (int c = 0; c < 3; ++c) {
     EXPECT_NEAR(blockMean(r.image, 0, 0, 4, 2, c) / white[c], 1.0, 0.005) << "channel " << c;
     for (int y = 0; y < r.image.height; ++y)
@@ -180,7 +95,7 @@ TEST(ViewFootprint, AgreesWithThePointEstimatorAtHighSpp) {
     const double own = std::sqrt(std::max(0.0, e * e - noiseA * noiseA));
     std::printf("[ measured ] footprint %4d spp: RMSE/mean vs point 4096 %.2f%%, own error ~%.2f%%, mean ratio %.4f, "
                 "probe failures %llu of %llu probes\n", spp, 100.0 * e / m, 100.0 * own / m, meanAll(f.image) / m,
-                (unsigned long long)f.stats.probeFailures, (unsigned long long)f.stats.probeRays);
+                (unsigned long long)f.stats.footprint.probeFailures, (unsigned long long)f.stats.footprint.probeRays);
     EXPECT_LT(own, prev);
     prev = own;
     EXPECT_NEAR(meanAll(f.image) / m, 1.0, 0.01) << spp << " spp";
@@ -199,54 +114,8 @@ TEST(ViewFootprint, AgreesWithThePointEstimatorAtHighSpp) {
   }
 }
 
-TEST(ViewFootprint, BitIdenticalOnOneAndTwoThreads) {
-  RealSetup r;
-  for (PanelEstimator e : {PanelEstimator::Footprint, PanelEstimator::PointSample}) {
-    Image one, two;
-    {
-      ThreadLimit t(1);
-      one = r.render(e, 3, 9).image;
-    }
-    {
-      ThreadLimit t(2);
-      two = r.render(e, 3, 9).image;
-    }
-    ASSERT_EQ(one.data.size(), two.data.size());
-    EXPECT_EQ(std::memcmp(one.data.data(), two.data.data(), one.data.size() * sizeof(float)), 0)
-        << panelEstimatorName(e);
-    for (float v : one.data) ASSERT_TRUE(std::isfinite(v));
-  }
-}
-
 TEST(ViewFootprint, BadScaleIsAnInputError) {
   RealSetup r;
   EXPECT_THROW(r.render(PanelEstimator::Footprint, 1, 1, -1.0), InputError);
   EXPECT_THROW(r.render(PanelEstimator::Footprint, 1, 1, std::nan("")), InputError);
-}
-
-// Diagnostics (run with --gtest_also_run_disabled_tests): the noise of one image (from two
-// seeds) at the default camera's scale (a camera pixel covers ~64 um of the MLA), split by
-// source: the panel lottery, the MLA's stochastic Fresnel choices, the lens aperture.
-TEST(ViewFootprint, DISABLED_NoiseBudget) {
-  for (int variant = 0; variant < 4; ++variant) {
-    RealSetup r(false, 96, 64);
-    if (variant >= 2) {
-      RealMlaOptions o;
-      o.fresnel = FresnelMode::Off;
-      r.mla = RealMla::fromDisplay(r.display, r.layout, r.g, o);
-    }
-    if (variant == 3) r.camera = std::make_unique<ThinLensCameraModel>(r.camera->sensor(), r.camera->pose(), 12.0, 400.0, r.D);
-    if (variant == 1) continue;
-    for (PanelEstimator e : {PanelEstimator::PointSample, PanelEstimator::Footprint}) {
-      if (variant > 1 && e == PanelEstimator::PointSample) continue;
-      for (int spp : {1, 4, 16}) {
-        const ViewResult a = r.render(e, spp, 1), b = r.render(e, spp, 2);
-        std::printf("[ measured ] %s, %s: %2d spp noise RMSE/mean %.2f%% (%.2f s)\n",
-                    variant == 0 ? "stochastic Fresnel" : variant == 1 ? "stochastic Fresnel" :
-                    variant == 2 ? "Fresnel off" : "Fresnel off, f/400",
-                    panelEstimatorName(e), spp, 100.0 * rmse(a.image, b.image) / std::sqrt(2.0) / meanAll(a.image),
-                    a.stats.seconds);
-      }
-    }
-  }
 }

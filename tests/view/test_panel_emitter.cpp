@@ -1,5 +1,6 @@
 // PanelEmitter: subpixel geometry, black matrix, area normalisation to the panel white, drive
-// values, angular profile, cover glass (refraction offset and Fresnel), and bad input.
+// values, angular profile, cover glass (refraction offset and Fresnel), bad input, and the
+// estimators' lookups: the exact box averages (all channels and one), the channel lookup.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 
 #include "camera/lens_system.h"
 #include "core/error.h"
+#include "core/rng.h"
 #include "spectral/cie.h"
 #include "spectral/dispersion.h"
 #include "view/panel_emitter.h"
@@ -254,4 +256,125 @@ TEST(PanelEmitter, DriveValuesAreClampedAndEncodedImagesDecoded) {
   s.encoded = true;  // sRGB EOTF: 0.5 encoded -> 0.214 linear
   PanelEmitter enc(d.panel, L, uniformEia(L, 0.5f, 0.5f, 0.5f), "eia.png", 1.2, s);
   EXPECT_NEAR(enc.emit(panelPoint(L, 9.17, 4.5, 1.2), kDown, 550.0f).weight, d.panel.eotf.decode(0.5), 1e-6);
+}
+
+namespace {
+
+// Dense midpoint-grid average of lookupPx over a box, per channel.
+std::array<double, 3> gridAverage(const PanelEmitter& e, double u0, double v0, double u1, double v1, int n) {
+  std::array<double, 3> s{0, 0, 0};
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const PanelEmission em = e.lookupPx(u0 + (i + 0.5) / n * (u1 - u0), v0 + (j + 0.5) / n * (v1 - v0));
+      if (em.channel >= 0) s[size_t(em.channel)] += em.weight;
+    }
+  for (auto& v : s) v /= double(n) * n;
+  return s;
+}
+
+void checkBoxAverages(const Display& d, const char* name) {
+  const EiLayout L = computeLayout(d);
+  PanelEmitter e(d.panel, L, patternEia(L), "pattern.exr", 1.2);
+  Rng rng(7, 3);
+  double worst = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    // Boxes from 0.05 to 3 px, anywhere on the panel and across its edges.
+    const double w = 0.05 + 2.95 * rng.uniformDouble(), h = 0.05 + 2.95 * rng.uniformDouble();
+    const double u0 = -1.0 + (L.panelW + 1.0) * rng.uniformDouble(), v0 = -1.0 + (L.panelH + 1.0) * rng.uniformDouble();
+    const auto a = e.boxAveragePx(u0, v0, u0 + w, v0 + h);
+    const auto g = gridAverage(e, u0, v0, u0 + w, v0 + h, 600);
+    for (int c = 0; c < 3; ++c) {
+      worst = std::max(worst, std::abs(a[size_t(c)] - g[size_t(c)]));
+      EXPECT_NEAR(a[size_t(c)], g[size_t(c)], 4e-3) << name << " box " << i << " channel " << c;
+    }
+  }
+  std::printf("[ measured ] %s: largest |box average - 600 x 600 grid average| = %.2g\n", name, worst);
+}
+
+}  // namespace
+
+TEST(PanelEmitterBox, StripeBoxAverageIsTheAreaIntegral) {
+  checkBoxAverages(smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2), "rgb stripe");
+}
+
+TEST(PanelEmitterBox, DiamondBoxAverageIsTheAreaIntegral) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  d.panel.subpixels = diamondLayout(0.8);
+  checkBoxAverages(d, "diamond (clipped polygons)");
+}
+
+TEST(PanelEmitterBox, WholeTilesOfWhiteGiveTheFillFactorAndZeroBoxesThePoint) {
+  for (bool diamond : {false, true}) {
+    Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+    if (diamond) d.panel.subpixels = diamondLayout(0.8);
+    const EiLayout L = computeLayout(d);
+    PanelEmitter e(d.panel, L, uniformEia(L, 1, 1, 1), "white.exr", 1.2);
+    const int t = diamond ? 2 : 1;
+    const auto a = e.boxAveragePx(2.0 * t, 4.0 * t, 5.0 * t, 6.0 * t);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[size_t(c)], 1.0 / e.areaFactor(c), 1e-6) << c;
+    // Half of the box off the panel's left edge: half the light.
+    const auto h = e.boxAveragePx(-3.0 * t, 4.0 * t, 3.0 * t, 6.0 * t);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(h[size_t(c)], 0.5 / e.areaFactor(c), 1e-6) << c;
+    EXPECT_EQ(e.boxAveragePx(-5.0, -5.0, -1.0, -1.0)[0], 0.0f);
+  }
+  // A box of zero area is the point lookup, and emit() is lookupPx at emissionPointPx.
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  d.panel.coverGlass = CoverGlass{0.3, "N-BK7"};
+  const EiLayout L = computeLayout(d);
+  PanelEmitter e(d.panel, L, patternEia(L), "pattern.exr", 1.2);
+  Rng rng(11, 5);
+  for (int i = 0; i < 500; ++i) {
+    const double u = L.panelW * rng.uniformDouble(), v = L.panelH * rng.uniformDouble();
+    const PanelEmission p = e.lookupPx(u, v);
+    const auto b = e.boxAveragePx(u, v, u, v);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(b[size_t(c)], p.channel == c ? p.weight : 0.0f);
+    const Point3 pt(float((u - 0.5 * L.eiaW - L.panelCol0) * L.pixelMm),
+                    float((0.5 * L.eiaH + L.panelRow0 - v) * L.pixelMm), -1.2f);
+    const Vec3 dir = glm::normalize(Vec3(float(rng.uniform() - 0.5), float(rng.uniform() - 0.5), -1.0f));
+    Vec2d uv;
+    float factor = 0.0f;
+    ASSERT_TRUE(e.emissionPointPx(pt, dir, 550.0f, uv, factor));
+    const PanelEmission em = e.emit(pt, dir, 550.0f), lk = e.lookupPx(uv.x, uv.y);
+    EXPECT_EQ(em.channel, lk.channel);
+    if (lk.channel >= 0 && lk.weight > 0.0f) {
+      EXPECT_EQ(em.weight, lk.weight * factor);
+    }
+  }
+}
+
+TEST(PanelEmitter, ChannelBoxAverageMatchesTheAllChannelBoxAverage) {
+  for (bool diamond : {false, true}) {
+    Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+    if (diamond) d.panel.subpixels = diamondLayout(0.8);
+    const EiLayout L = computeLayout(d);
+    PanelEmitter e(d.panel, L, patternEia(L), "pattern.exr", 1.2);
+    Rng rng(9, 2);
+    double worst = 0.0;
+    for (int i = 0; i < 5000; ++i) {
+      const double u = -1.0 + (L.panelW + 2.0) * rng.uniformDouble(), v = -1.0 + (L.panelH + 2.0) * rng.uniformDouble();
+      const double hu = 2.0 * rng.uniformDouble() * rng.uniformDouble(), hv = 2.0 * rng.uniformDouble() * rng.uniformDouble();
+      const auto all = e.boxAveragePx(u - hu, v - hv, u + hu, v + hv);
+      for (int c = 0; c < 3; ++c)
+        worst = std::max(worst, double(std::abs(e.channelBoxAveragePx(c, u - hu, v - hv, u + hu, v + hv) - all[size_t(c)])));
+    }
+    EXPECT_LT(worst, 1e-6) << (diamond ? "diamond" : "stripe");
+  }
+}
+
+TEST(PanelEmitter, ChannelLookupMatchesLookupPx) {
+  for (bool diamond : {false, true}) {
+    Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+    if (diamond) d.panel.subpixels = diamondLayout(0.8);
+    const EiLayout L = computeLayout(d);
+    PanelEmitter e(d.panel, L, patternEia(L), "pattern.exr", 1.2);
+    Rng rng(5, 2);
+    int mismatches = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const double u = -1.0 + (L.panelW + 2.0) * rng.uniformDouble(), v = -1.0 + (L.panelH + 2.0) * rng.uniformDouble();
+      const PanelEmission p = e.lookupPx(u, v);
+      for (int c = 0; c < 3; ++c)
+        if (e.channelDrivePx(c, u, v) != (p.channel == c ? p.weight : 0.0f)) ++mismatches;
+    }
+    EXPECT_EQ(mismatches, 0) << (diamond ? "diamond" : "stripe");
+  }
 }

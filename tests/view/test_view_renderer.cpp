@@ -9,10 +9,10 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "mla/ideal_mla.h"
 #include "mla/real_mla.h"
 #include "spectral/cie.h"
 #include "view/display_pose.h"
-#include "view/ideal_mla.h"
 #include "view/panel_emitter.h"
 #include "view/view_camera.h"
 #include "view/view_renderer.h"
@@ -34,6 +34,16 @@ class WhiteSpectrum final : public Spectrum {
  private:
   const PanelEmitter& e_;
 };
+
+// The tests here sample with the Footprint estimator (their tolerances were stated for it, and
+// the visible-packet spectral sampling needs a sampled estimator).
+ViewSettings footprintSettings(int spp) {
+  ViewSettings s;
+  s.spp = spp;
+  s.progress = false;
+  s.panelEstimator = PanelEstimator::Footprint;
+  return s;
+}
 
 // Uniform white through an ideal MLA seen by a pinhole camera 2000 mm away whose pixels each
 // cover exactly 2 x 2 lenslets; f is chosen so that each lenslet's footprint on the panel is
@@ -60,12 +70,10 @@ struct WhiteSetup {
     expected = defaultCamera().sensor.cameraRgb(WhiteSpectrum(*panel));
   }
   ViewResult render(SpectralSampling sampling, int spp, bool perWavelength = false) const {
-    ViewSettings s;
-    s.spp = spp;
-    s.progress = false;
+    ViewSettings s = footprintSettings(spp);
     s.spectral = sampling;
     s.perWavelengthRays = perWavelength;
-    return renderView(*camera, defaultCamera().sensor, *mla, *panel, lensletArrayArea(layout, P), s);
+    return renderView(*camera, defaultCamera().sensor, *mla, *panel, layout.activeArea(), s);
   }
 };
 
@@ -145,19 +153,17 @@ TEST(ViewRenderer, BitIdenticalOnOneAndTwoThreads) {
   DisplayPose pose{5.0, -3.0, 200.0};
   auto cam = pinholeCamera(pose.cameraPose(), 40, 24, 0.01, 20.0, true);
   for (SpectralSampling sm : {SpectralSampling::Primaries, SpectralSampling::Visible}) {
-    ViewSettings s;
-    s.spp = 6;
-    s.progress = false;
+    ViewSettings s = footprintSettings(6);
     s.spectral = sm;
     s.seed = 42;
     Image one, two;
     {
       ThreadLimit t(1);
-      one = renderView(*cam, defaultCamera().sensor, *mla, panel, lensletArrayArea(L, 1.0), s).image;
+      one = renderView(*cam, defaultCamera().sensor, *mla, panel, L.activeArea(), s).image;
     }
     {
       ThreadLimit t(2);
-      two = renderView(*cam, defaultCamera().sensor, *mla, panel, lensletArrayArea(L, 1.0), s).image;
+      two = renderView(*cam, defaultCamera().sensor, *mla, panel, L.activeArea(), s).image;
     }
     ASSERT_EQ(one.data.size(), two.data.size());
     EXPECT_EQ(std::memcmp(one.data.data(), two.data.data(), one.data.size() * sizeof(float)), 0)
@@ -170,7 +176,7 @@ TEST(ViewRenderer, BitIdenticalOnOneAndTwoThreads) {
     EXPECT_GT(sum, 0.0);
     // Another seed gives another image.
     s.seed = 43;
-    Image other = renderView(*cam, defaultCamera().sensor, *mla, panel, lensletArrayArea(L, 1.0), s).image;
+    Image other = renderView(*cam, defaultCamera().sensor, *mla, panel, L.activeArea(), s).image;
     EXPECT_NE(std::memcmp(one.data.data(), other.data.data(), one.data.size() * sizeof(float)), 0);
   }
 }
@@ -214,10 +220,8 @@ struct PointSetup {
   // Luminance-weighted centroid (continuous pixel coordinates) seen from a pose.
   Vec2d centroid(const DisplayPose& pose, int W, double pitch, double d) const {
     auto cam = pinholeCamera(pose.cameraPose(), W, W, pitch, d);
-    ViewSettings s;
-    s.spp = 64;
-    s.progress = false;
-    ViewResult r = renderView(*cam, defaultCamera().sensor, *mla, *panel, lensletArrayArea(layout, P), s);
+    const ViewSettings s = footprintSettings(64);
+    ViewResult r = renderView(*cam, defaultCamera().sensor, *mla, *panel, layout.activeArea(), s);
     double sx = 0, sy = 0, sw = 0;
     for (int y = 0; y < W; ++y)
       for (int x = 0; x < W; ++x) {
@@ -269,16 +273,14 @@ TEST(ViewRenderer, OutOfViewPoseSeesOnlyTheBackground) {
   WhiteSetup w;
   DisplayPose pose{120.0, 0.0, 2000.0};  // the camera is behind the display's plane
   auto cam = pinholeCamera(pose.cameraPose(), 4, 2, 0.01, 10.0);
-  EXPECT_EQ(displayCoverage(*cam, lensletArrayArea(w.layout, w.P)), 0.0);
-  ViewSettings s;
-  s.spp = 16;
-  s.progress = false;
+  EXPECT_EQ(displayCoverage(*cam, w.layout.activeArea()), 0.0);
+  ViewSettings s = footprintSettings(16);
   s.backgroundY = 0.25;
-  ViewResult r = renderView(*cam, defaultCamera().sensor, *w.mla, *w.panel, lensletArrayArea(w.layout, w.P), s);
+  ViewResult r = renderView(*cam, defaultCamera().sensor, *w.mla, *w.panel, w.layout.activeArea(), s);
   EXPECT_FALSE(r.stats.displayInView());
   for (float v : r.image.data) EXPECT_NEAR(v, 0.25, 1e-6);  // a D65 grey of Y = 0.25 is (Y, Y, Y)
   // Facing the display: fully covered.
-  EXPECT_EQ(displayCoverage(*w.camera, lensletArrayArea(w.layout, w.P)), 1.0);
+  EXPECT_EQ(displayCoverage(*w.camera, w.layout.activeArea()), 1.0);
 }
 
 TEST(ViewRenderer, TileCullingChangesNothing) {
@@ -287,12 +289,10 @@ TEST(ViewRenderer, TileCullingChangesNothing) {
   // seen at an angle.
   DisplayPose pose{20.0, -10.0, 2000.0};
   auto cam = pinholeCamera(pose.cameraPose(), 96, 64, 0.0025, 10.0);
-  ViewSettings s;
-  s.spp = 8;
-  s.progress = false;
-  ViewResult on = renderView(*cam, defaultCamera().sensor, *w.mla, *w.panel, lensletArrayArea(w.layout, w.P), s);
+  ViewSettings s = footprintSettings(8);
+  ViewResult on = renderView(*cam, defaultCamera().sensor, *w.mla, *w.panel, w.layout.activeArea(), s);
   s.cullTiles = false;
-  ViewResult off = renderView(*cam, defaultCamera().sensor, *w.mla, *w.panel, lensletArrayArea(w.layout, w.P), s);
+  ViewResult off = renderView(*cam, defaultCamera().sensor, *w.mla, *w.panel, w.layout.activeArea(), s);
   EXPECT_GT(on.stats.culledPixels, 96u * 64u / 2);
   EXPECT_EQ(off.stats.culledPixels, 0u);
   EXPECT_GT(on.stats.displayRays, 0u);
@@ -302,13 +302,12 @@ TEST(ViewRenderer, TileCullingChangesNothing) {
 
 TEST(ViewRenderer, BadSettingsAreInputErrors) {
   WhiteSetup w;
-  ViewSettings s;
-  s.spp = 0;
-  EXPECT_THROW(renderView(*w.camera, defaultCamera().sensor, *w.mla, *w.panel, lensletArrayArea(w.layout, 1.0), s),
+  ViewSettings s = footprintSettings(0);
+  EXPECT_THROW(renderView(*w.camera, defaultCamera().sensor, *w.mla, *w.panel, w.layout.activeArea(), s),
                InputError);
   s.spp = 1;
   s.backgroundY = -1.0;
-  EXPECT_THROW(renderView(*w.camera, defaultCamera().sensor, *w.mla, *w.panel, lensletArrayArea(w.layout, 1.0), s),
+  EXPECT_THROW(renderView(*w.camera, defaultCamera().sensor, *w.mla, *w.panel, w.layout.activeArea(), s),
                InputError);
 }
 

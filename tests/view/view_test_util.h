@@ -70,6 +70,16 @@ inline Image uniformEia(const EiLayout& L, float r, float g, float b) {
   return img;
 }
 
+// A patterned panel-sized EIA: values from 0 to 1 that change from pixel to pixel and channel
+// to channel (the hardest case for a panel estimator: every subpixel differs).
+inline Image patternEia(const EiLayout& L) {
+  Image eia = uniformEia(L, 0, 0, 0);
+  for (int y = 0; y < L.panelH; ++y)
+    for (int x = 0; x < L.panelW; ++x)
+      for (int c = 0; c < 3; ++c) eia.at(x, y, c) = float(((x * 7 + y * 3 + c * 5) % 11) / 10.0);
+  return eia;
+}
+
 // The default camera description (its sensor curves give the camera RGB).
 inline const CameraDescription& defaultCamera() {
   static const CameraDescription c = loadCameraDescription("alvium-1800-u-500c");

@@ -1,18 +1,14 @@
 // IdealLensletMla: the ideal thin-lens mapping (focal plane -> parallel bundles, imaging with
-// 1/f = 1/g + 1/L), lattice addressing and edges; DisplayPose sign conventions; the Sobol
-// points' stratification.
+// 1/f = 1/g + 1/L), lattice addressing and edges.
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <set>
 
-#include "view/display_pose.h"
-#include "view/ideal_mla.h"
-#include "view/qmc.h"
-#include "view_test_util.h"
+#include "mla/ideal_mla.h"
+#include "mla_test_util.h"
 
 using namespace inim;
-using namespace view_test;
+using namespace mla_test;
 
 namespace {
 
@@ -114,55 +110,4 @@ TEST(IdealLensletMla, EdgesCornersAndOutside) {
   EXPECT_TRUE(isFinite(a.p) && isFinite(a.d));
   EXPECT_FALSE(mla.isDispersive());
   EXPECT_EQ(mla.frontZ(), 0.0f);
-}
-
-TEST(DisplayPose, SignConventions) {
-  DisplayPose p;
-  p.distanceMm = 350.0;
-  p.rotHDeg = 7.0;
-  const Transform w = p.displayToWorld();
-  // +H: the display's right edge moves away from the camera (toward -z), the left edge closer.
-  EXPECT_LT(w.point(Point3d(50.0, 0.0, 0.0)).z, 0.0);
-  EXPECT_GT(w.point(Point3d(-50.0, 0.0, 0.0)).z, 0.0);
-  EXPECT_NEAR(p.normalInWorld().x, std::sin(7.0 * M_PI / 180.0), 1e-12);
-  // The camera, in the display frame, sits at azimuth -H: to the display's left.
-  ViewingPose cp = p.cameraPose();
-  EXPECT_NEAR(cp.eye.x, -350.0 * std::sin(7.0 * M_PI / 180.0), 1e-9);
-  EXPECT_NEAR(cp.eye.z, 350.0 * std::cos(7.0 * M_PI / 180.0), 1e-9);
-  EXPECT_NEAR(glm::length(cp.lookAt), 0.0, 1e-12);
-  // +V: the top edge moves away from the camera; the camera sits below the display normal.
-  DisplayPose v;
-  v.rotVDeg = 7.0;
-  EXPECT_LT(v.displayToWorld().point(Point3d(0.0, 30.0, 0.0)).z, 0.0);
-  EXPECT_LT(v.cameraPose().eye.y, 0.0);
-  // Both: the camera stays at distance D from the centre.
-  DisplayPose b{7.0, -7.0, 350.0};
-  EXPECT_NEAR(glm::length(b.cameraPose().eye), 350.0, 1e-9);
-}
-
-TEST(SobolSequence, StratifiedPointSets) {
-  // Dimensions 0 and 1 (the pixel position) form a (0, 2)-sequence: every elementary interval
-  // of area 1/64 holds exactly one of the first 64 points, with or without the scramble.
-  for (int shape = 0; shape <= 6; ++shape) {
-    const int nx = 1 << shape, ny = 64 / nx;
-    for (uint32_t seed : {0u, 12345u}) {
-      std::set<int> cells;
-      for (uint32_t i = 0; i < 64; ++i) {
-        const float a = SobolSequence::sample(i, 0, seed), b = SobolSequence::sample(i, 1, seed * 7 + 1);
-        cells.insert(int(a * nx) + nx * int(b * ny));
-      }
-      EXPECT_EQ(cells.size(), 64u) << "shape " << nx << "x" << ny;
-    }
-  }
-  // Every dimension is stratified on its own; all values lie in [0, 1).
-  for (int dim = 0; dim < SobolSequence::kDims; ++dim) {
-    std::set<int> cells;
-    for (uint32_t i = 0; i < 32; ++i) {
-      const float u = SobolSequence::sample(i, dim, 99u + uint32_t(dim));
-      EXPECT_GE(u, 0.0f);
-      EXPECT_LT(u, 1.0f);
-      cells.insert(int(u * 32));
-    }
-    EXPECT_EQ(cells.size(), 32u) << "dim " << dim;
-  }
 }
