@@ -1,4 +1,3 @@
-#include "core/format.h"
 #include "mla/real_mla.h"
 
 #include <algorithm>
@@ -8,6 +7,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace inim {
 
@@ -49,12 +49,15 @@ struct RealMla::Hit {
   int k = 0, l = 0;
 };
 
-RealMla::RealMla(const RealMlaGeometry& g, IorPtr ior, const RealMlaOptions& o, const std::string& file)
-    : g_(g), opt_(o), ior_(std::move(ior)) {
-  auto fail = [&](const std::string& key, double v, const std::string& expected) {
-    throw InputError(file, key, formatNumber(v), expected);
-  };
-  if (!ior_) throw InputError(file, "material", "(none)", "a dielectric of spectra/materials.json");
+namespace {
+
+[[noreturn]] void failInput(const std::string& file, const std::string& key, double v, const std::string& expected) {
+  throw InputError(file, key, formatNumber(v), expected);
+}
+
+// The numbers of a geometry and its options that must hold before anything is derived.
+void validateGeometry(const RealMlaGeometry& g, const RealMlaOptions& opt, const std::string& file) {
+  auto fail = [&](const std::string& key, double v, const std::string& expected) { failInput(file, key, v, expected); };
   if (!(g.pitchMm > 0.0) || !std::isfinite(g.pitchMm)) fail("pitch_mm", g.pitchMm, "a pitch > 0 mm");
   if (!(g.apertureMm > 0.0) || g.apertureMm > g.pitchMm * (1.0 + 1e-9))
     fail("aperture_mm", g.apertureMm, "an aperture > 0 and <= pitch_mm (" + formatNumber(g.pitchMm) + ")");
@@ -67,22 +70,34 @@ RealMla::RealMla(const RealMlaGeometry& g, IorPtr ior, const RealMlaOptions& o, 
   if (g.cols < 1 || g.rows < 1) fail("ei_count", std::min(g.cols, g.rows), "at least 1 x 1 lenslets");
   if (!std::isfinite(g.originXMm) || !std::isfinite(g.originYMm))
     fail("lens centre", g.originXMm, "finite lenslet centres");
-  if (opt_.maxEvents < 1) fail("max events", opt_.maxEvents, "at least 1 surface interaction");
-  if (!(opt_.absorptionPerMm >= 0.0) || !std::isfinite(opt_.absorptionPerMm))
-    fail("absorption_per_mm", opt_.absorptionPerMm, "an absorption coefficient >= 0 per mm");
+  if (opt.maxEvents < 1) fail("max events", opt.maxEvents, "at least 1 surface interaction");
+  if (!(opt.absorptionPerMm >= 0.0) || !std::isfinite(opt.absorptionPerMm))
+    fail("absorption_per_mm", opt.absorptionPerMm, "an absorption coefficient >= 0 per mm");
+}
 
+}  // namespace
+
+RealMla::RealMla(const RealMlaGeometry& g, IorPtr ior, const RealMlaOptions& o, const std::string& file)
+    : g_(g), opt_(o), ior_(std::move(ior)) {
+  if (!ior_) throw InputError(file, "material", "(none)", "a dielectric of spectra/materials.json");
+  validateGeometry(g, opt_, file);
   nTable_.resize(kLambdaTableN);
   for (int i = 0; i < kLambdaTableN; ++i) nTable_[size_t(i)] = ior_->n(float(kLambdaTable0 + i));
   nRef_ = g.referenceIndex > 0.0 ? g.referenceIndex : double(ior_->n(float(kLambdaDNm)));
-  if (!(nRef_ > 1.0)) fail("material", nRef_, "a lens material with n_d > 1");
-
-  const double P = g.pitchMm, a = g.apertureMm;
+  if (!(nRef_ > 1.0)) failInput(file, "material", nRef_, "a lens material with n_d > 1");
   hex_ = g.lattice == Mla::Lattice::Hex;
-  rowH_ = hex_ ? P * std::sqrt(3.0) / 2.0 : P;
+  rowH_ = hex_ ? g.pitchMm * std::sqrt(3.0) / 2.0 : g.pitchMm;
   R_ = g.radiusMm;
   K1_ = 1.0 + g.conic;
+  buildCellAndAperture();
+  buildOutline();
+  placeSurfaces(file);
+  placeExtent(file);
+}
 
-  // Cell and aperture half-planes, in a cell's local frame (origin on the lenslet axis).
+// Cell and aperture half-planes, in a cell's local frame (origin on the lenslet axis).
+void RealMla::buildCellAndAperture() {
+  const double P = g_.pitchMm, a = g_.apertureMm;
   auto polygon = [](bool hexShape, double width, std::array<Edge, 6>& e) {
     if (!hexShape) {
       e[0] = {1, 0, width / 2}, e[1] = {-1, 0, width / 2}, e[2] = {0, 1, width / 2}, e[3] = {0, -1, width / 2};
@@ -98,10 +113,10 @@ RealMla::RealMla(const RealMlaGeometry& g, IorPtr ior, const RealMlaOptions& o, 
     return 6;
   };
   nCellEdges_ = polygon(hex_, P, cellEdges_);
-  circle_ = g.aperture == Mla::Aperture::Circle;
+  circle_ = g_.aperture == Mla::Aperture::Circle;
   apR2_ = 0.25 * a * a;
   std::array<Edge, 6> ap{};
-  int nAp = circle_ ? 0 : polygon(g.aperture == Mla::Aperture::Hex, a, ap);
+  int nAp = circle_ ? 0 : polygon(g_.aperture == Mla::Aperture::Hex, a, ap);
   // Cell vertices (for supports and the aperture's farthest point).
   std::vector<std::array<double, 2>> cellVerts;
   {
@@ -125,58 +140,64 @@ RealMla::RealMla(const RealMlaGeometry& g, IorPtr ior, const RealMlaOptions& o, 
     if (!onCell && e.h < support - 1e-12 * P) apEdges_[size_t(nApEdges_++)] = e;
   }
   hasLand_ = circle_ || nApEdges_ > 0;
+}
 
-  // A's farthest point from the axis.
+// A's farthest point from the axis, and its outline (vertices in angular order, then the edge
+// midpoints; or 32 points on the circle).
+void RealMla::buildOutline() {
+  const double P = g_.pitchMm;
   if (circle_) {
-    rMax_ = 0.5 * a;
+    rMax_ = 0.5 * g_.apertureMm;
     for (int i = 0; i < 32; ++i) outline_.push_back({rMax_ * std::cos(i * M_PI / 16), rMax_ * std::sin(i * M_PI / 16)});
-  } else {
-    std::vector<Edge> all(cellEdges_.begin(), cellEdges_.begin() + nCellEdges_);
-    all.insert(all.end(), apEdges_.begin(), apEdges_.begin() + nApEdges_);
-    rMax_ = 0.0;
-    for (size_t i = 0; i < all.size(); ++i)
-      for (size_t j = i + 1; j < all.size(); ++j) {
-        double det = all[i].nx * all[j].ny - all[i].ny * all[j].nx;
-        if (std::abs(det) < 1e-12) continue;
-        double x = (all[i].h * all[j].ny - all[i].ny * all[j].h) / det;
-        double y = (all[i].nx * all[j].h - all[i].h * all[j].nx) / det;
-        bool in = true;
-        for (auto& e : all) in = in && x * e.nx + y * e.ny <= e.h + 1e-9 * P;
-        if (in) {
-          rMax_ = std::max(rMax_, std::hypot(x, y));
-          outline_.push_back({x, y});
-        }
-      }
-    // Vertices in angular order, then the edge midpoints.
-    std::sort(outline_.begin(), outline_.end(), [](const auto& p, const auto& q) {
-      return std::atan2(p[1], p[0]) < std::atan2(q[1], q[0]);
-    });
-    outline_.erase(std::unique(outline_.begin(), outline_.end(),
-                               [&](const auto& p, const auto& q) {
-                                 return std::hypot(p[0] - q[0], p[1] - q[1]) < 1e-9 * P;
-                               }),
-                   outline_.end());
-    while (outline_.size() > 1 &&
-           std::hypot(outline_.front()[0] - outline_.back()[0], outline_.front()[1] - outline_.back()[1]) < 1e-9 * P)
-      outline_.pop_back();
-    const size_t nv = outline_.size();
-    for (size_t i = 0; i < nv; ++i) {
-      const auto& p = outline_[i];
-      const auto& q = outline_[(i + 1) % nv];
-      outline_.push_back({0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])});
-    }
+    return;
   }
-  if (!(K1_ * rMax_ * rMax_ < R_ * R_))
-    fail("radius_of_curvature_mm", R_,
-         "a radius whose cap covers the aperture: (1 + conic) r^2 < R^2 with r = " + formatNumber(rMax_) +
-             " mm, the aperture's farthest point from the lenslet axis");
-  sMax_ = capSag(rMax_);
-  if (!(g.thicknessMm > sMax_ * (1.0 + 1e-9) + 1e-9))
-    fail("substrate_thickness_mm", g.thicknessMm,
-         "a centre thickness larger than the cap depth s_max = " + formatNumber(sMax_) + " mm");
+  std::vector<Edge> all(cellEdges_.begin(), cellEdges_.begin() + nCellEdges_);
+  all.insert(all.end(), apEdges_.begin(), apEdges_.begin() + nApEdges_);
+  rMax_ = 0.0;
+  for (size_t i = 0; i < all.size(); ++i)
+    for (size_t j = i + 1; j < all.size(); ++j) {
+      double det = all[i].nx * all[j].ny - all[i].ny * all[j].nx;
+      if (std::abs(det) < 1e-12) continue;
+      double x = (all[i].h * all[j].ny - all[i].ny * all[j].h) / det;
+      double y = (all[i].nx * all[j].h - all[i].h * all[j].nx) / det;
+      bool in = true;
+      for (auto& e : all) in = in && x * e.nx + y * e.ny <= e.h + 1e-9 * P;
+      if (in) {
+        rMax_ = std::max(rMax_, std::hypot(x, y));
+        outline_.push_back({x, y});
+      }
+    }
+  std::sort(outline_.begin(), outline_.end(), [](const auto& p, const auto& q) {
+    return std::atan2(p[1], p[0]) < std::atan2(q[1], q[0]);
+  });
+  outline_.erase(std::unique(outline_.begin(), outline_.end(),
+                             [&](const auto& p, const auto& q) {
+                               return std::hypot(p[0] - q[0], p[1] - q[1]) < 1e-9 * P;
+                             }),
+                 outline_.end());
+  while (outline_.size() > 1 &&
+         std::hypot(outline_.front()[0] - outline_.back()[0], outline_.front()[1] - outline_.back()[1]) < 1e-9 * P)
+    outline_.pop_back();
+  const size_t nv = outline_.size();
+  for (size_t i = 0; i < nv; ++i) {
+    const auto& p = outline_[i];
+    const auto& q = outline_[(i + 1) % nv];
+    outline_.push_back({0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])});
+  }
+}
 
-  const double T = g.thicknessMm;
-  if (g.orientation == Mla::Orientation::CurvedTowardViewer) {
+// The cap must cover A and fit in the substrate; the vertices, faces and panel along z.
+void RealMla::placeSurfaces(const std::string& file) {
+  if (!(K1_ * rMax_ * rMax_ < R_ * R_))
+    failInput(file, "radius_of_curvature_mm", R_,
+              "a radius whose cap covers the aperture: (1 + conic) r^2 < R^2 with r = " + formatNumber(rMax_) +
+                  " mm, the aperture's farthest point from the lenslet axis");
+  sMax_ = capSag(rMax_);
+  if (!(g_.thicknessMm > sMax_ * (1.0 + 1e-9) + 1e-9))
+    failInput(file, "substrate_thickness_mm", g_.thicknessMm,
+              "a centre thickness larger than the cap depth s_max = " + formatNumber(sMax_) + " mm");
+  const double T = g_.thicknessMm;
+  if (g_.orientation == Mla::Orientation::CurvedTowardViewer) {
     s_ = 1.0;
     zv_ = T * (1.0 - 1.0 / nRef_);  // H (flat + T/n) on z = 0
     frontZ_ = zv_;
@@ -189,24 +210,26 @@ RealMla::RealMla(const RealMlaGeometry& g, IorPtr ior, const RealMlaOptions& o, 
   }
   frontZf_ = float(frontZ_);
   if (double(frontZf_) < frontZ_) frontZf_ = std::nextafter(frontZf_, std::numeric_limits<float>::infinity());
-  if (!(-g.gapMm < backZ_ - 1e-9))
-    fail("gap_mm", g.gapMm,
-         "a panel gap larger than " + formatNumber(-backZ_) + " mm: the panel must lie behind the MLA (its " +
-             (s_ > 0 ? std::string("flat face is at z = ") + formatNumber(backZ_) + " mm, T/n_d behind the reference plane)"
-                     : std::string("cap vertices are on the reference plane)")));
+  if (!(-g_.gapMm < backZ_ - 1e-9))
+    failInput(file, "gap_mm", g_.gapMm,
+              "a panel gap larger than " + formatNumber(-backZ_) + " mm: the panel must lie behind the MLA (its " +
+                  (s_ > 0 ? std::string("flat face is at z = ") + formatNumber(backZ_) + " mm, T/n_d behind the reference plane)"
+                          : std::string("cap vertices are on the reference plane)")));
+}
 
-  // The array's extent.
-  const double x0 = g.originXMm, y0 = g.originYMm;
-  if (g.marginCells < 0) fail("margin cells", g.marginCells, "a margin >= 0 lenslets");
-  const int M = g.marginCells;
+// The array's extent: the indexed lenslets and marginCells more on every side.
+void RealMla::placeExtent(const std::string& file) {
+  const double P = g_.pitchMm, x0 = g_.originXMm, y0 = g_.originYMm;
+  if (g_.marginCells < 0) failInput(file, "margin cells", g_.marginCells, "a margin >= 0 lenslets");
+  const int M = g_.marginCells;
   if (!hex_) {
-    boxX0_ = x0 - (M + 0.5) * P, boxX1_ = x0 + (g.cols - 1 + M + 0.5) * P;
-    boxY0_ = y0 - (g.rows - 1 + M + 0.5) * P, boxY1_ = y0 + (M + 0.5) * P;
+    boxX0_ = x0 - (M + 0.5) * P, boxX1_ = x0 + (g_.cols - 1 + M + 0.5) * P;
+    boxY0_ = y0 - (g_.rows - 1 + M + 0.5) * P, boxY1_ = y0 + (M + 0.5) * P;
   } else {
-    boxX0_ = x0 - (M + 0.5) * P, boxX1_ = x0 + (g.cols - 1 + M + 1.0) * P;
-    boxY0_ = y0 - (g.rows - 1 + M) * rowH_ - P / std::sqrt(3.0), boxY1_ = y0 + M * rowH_ + P / std::sqrt(3.0);
+    boxX0_ = x0 - (M + 0.5) * P, boxX1_ = x0 + (g_.cols - 1 + M + 1.0) * P;
+    boxY0_ = y0 - (g_.rows - 1 + M) * rowH_ - P / std::sqrt(3.0), boxY1_ = y0 + M * rowH_ + P / std::sqrt(3.0);
   }
-  maxSteps_ = 2 * (g.cols + g.rows + 4 * M) + 16;
+  maxSteps_ = 2 * (g_.cols + g_.rows + 4 * M) + 16;
 }
 
 RealMlaGeometry RealMla::geometryFor(const Display& d, const EiLayout& L, double gapMm) {

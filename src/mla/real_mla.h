@@ -224,6 +224,12 @@ class RealMla final : public MlaModel {
   Vec3d dirC(const Vec3d& d) const { return {d.x, d.y, -s_ * d.z}; }
   Vec3d fromC(const Vec3d& q) const { return {q.x, q.y, zv_ - s_ * q.z}; }
 
+  // Construction steps (after validation and the index table), in this order.
+  void buildCellAndAperture();
+  void buildOutline();
+  void placeSurfaces(const std::string& file);
+  void placeExtent(const std::string& file);
+
   void centreOf(int k, int l, double& cx, double& cy) const;
   bool insideAperture(double lx, double ly, double tol) const;
   int nextHit(const Vec3d& o, const Vec3d& d, bool inGlass, Hit& h) const;  // 0 escape, 1 hit, 2 lost

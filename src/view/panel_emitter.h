@@ -111,7 +111,7 @@ class PanelEmitter {
   // The drive value of channel c at a point (panel pixel coordinates): lookupPx(u, v).weight
   // when lookupPx(u, v).channel == c, else 0 (up to points exactly on a rectangle's edge).
   // Tests only channel c's subpixels, axis-aligned rectangles by their bounds: the cheap
-  // lookup of the Aperture estimator's quadrature (view_renderer.h).
+  // lookup of the Quadrature estimator where it has no lenslet map (quadrature_estimator.h).
   float channelDrivePx(int c, double u, double v) const;
 
   // Radiance spectrum of a channel's subpixel at full drive on axis: K_c L0 primary_c(lambda).

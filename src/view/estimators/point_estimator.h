@@ -4,9 +4,9 @@
 //
 // Integrates: the pixel's area, the camera's aperture, the wavelengths (importance-sampled per
 // primary) and the MLA's Fresnel choices, all by Monte Carlo (Owen-scrambled Sobol points).
-// Bias: none. Noise: at the default camera a pixel's aperture spreads through a lenslet over
-// several subpixels of different colours, so each ray is a lottery between them and the black
-// matrix: RMSE ~300% of the mean at 1 spp, falling as ~1/sqrt(spp).
+// Bias: none. Noise: high; at the default camera a pixel's aperture spreads through a lenslet
+// over several subpixels of different colours, so each ray is a lottery between them and the
+// black matrix; it falls as ~1/sqrt(spp) (measurements: docs/view-estimators.md).
 // Cost: one camera ray and one MLA trace per sample (per primary when dispersive).
 // Statistics: the ray counts only (RayCounts).
 #include "view/estimators/panel_estimator.h"

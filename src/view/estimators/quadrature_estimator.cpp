@@ -118,6 +118,11 @@ class QuadratureTile final : public TileEstimator {
                        const Vec2d& slope, float lambda, const Landing& landing, double M[2][2], Vec2d& shift) const;
   bool measureSlopeMap(const Vec2d& crossing, const Vec2d& slope, float lambda, const Landing& landing,
                        const ApertureTable& table, double B[2][2]) const;
+  const float* tableOffsets(const double M[2][2], const double B[2][2], const BlockCamera& camera,
+                           const ApertureTable& table);
+  bool addEmission(const PolygonMoments& piece, const ApertureTable& table, const Landing& landing,
+                   const float* offsets, const double M[2][2], const Vec2d& shift, double scale, int primary, int node,
+                   Vec3d& rgb) const;
 
   const QuadratureEstimator& estimator_;
   const EstimatorContext& context_;
@@ -331,9 +336,31 @@ bool QuadratureTile::measureSlopeMap(const Vec2d& crossing, const Vec2d& slope, 
   return true;
 }
 
+// The table's points as panel offsets through the piece's map: A = (M - B Js) Jh^-1 per mm of
+// crossing, B per unit slope, offset = A dh + B ds (into pieceOffsets_).
+const float* QuadratureTile::tableOffsets(const double M[2][2], const double B[2][2], const BlockCamera& camera,
+                                          const ApertureTable& table) {
+  const auto& Jh = camera.dCrossing;
+  const auto& Js = camera.dSlope;
+  const double det = Jh[0][0] * Jh[1][1] - Jh[0][1] * Jh[1][0];
+  const double inverseJh[2][2] = {{Jh[1][1] / det, -Jh[0][1] / det}, {-Jh[1][0] / det, Jh[0][0] / det}};
+  double R[2][2], A[2][2];
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) R[a][b] = M[a][b] - (B[a][0] * Js[0][b] + B[a][1] * Js[1][b]);
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) A[a][b] = R[a][0] * inverseJh[0][b] + R[a][1] * inverseJh[1][b];
+  pieceOffsets_.resize(2 * table.points.size());
+  for (size_t i = 0; i < table.points.size(); ++i) {
+    const auto& q = table.points[i];
+    pieceOffsets_[2 * i] = float(A[0][0] * q.dhx + A[0][1] * q.dhy + B[0][0] * q.dsx + B[0][1] * q.dsy);
+    pieceOffsets_[2 * i + 1] = float(A[1][0] * q.dhx + A[1][1] * q.dhy + B[1][0] * q.dsx + B[1][1] * q.dsy);
+  }
+  return pieceOffsets_.data();
+}
+
 // One primary and wavelength node of a piece: its centroid's centre ray landed through the MLA,
-// the lenslet's map about it (A = (M - B Js) Jh^-1 per mm of crossing, B per unit slope) turns
-// the table's points into panel offsets, and each reads its channel's box average.
+// the lenslet's map about it turns the table's points into panel offsets (tableOffsets), and
+// each reads its channel's box average.
 void QuadratureTile::integratePieceAt(const PolygonMoments& piece, double fraction, const ApertureTable& table,
                                       const BlockCamera& camera, size_t block, int primary, int node,
                                       SlopeJacobian& slopeJacobian, Vec3d& rgb) {
@@ -361,19 +388,7 @@ void QuadratureTile::integratePieceAt(const PolygonMoments& piece, double fracti
   if (ok && !slopeJacobian.measured) ok = slopeJacobian.measured = measureSlopeMap(crossing, slope, lambda, landing, table, B);
   const float* offsets = nullptr;
   if (ok && slopeJacobian.measured) {
-    const double inverseJh[2][2] = {{Jh[1][1] / det, -Jh[0][1] / det}, {-Jh[1][0] / det, Jh[0][0] / det}};
-    double R[2][2], A[2][2];
-    for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b) R[a][b] = M[a][b] - (B[a][0] * Js[0][b] + B[a][1] * Js[1][b]);
-    for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b) A[a][b] = R[a][0] * inverseJh[0][b] + R[a][1] * inverseJh[1][b];
-    pieceOffsets_.resize(2 * table.points.size());
-    for (size_t i = 0; i < table.points.size(); ++i) {
-      const auto& q = table.points[i];
-      pieceOffsets_[2 * i] = float(A[0][0] * q.dhx + A[0][1] * q.dhy + B[0][0] * q.dsx + B[0][1] * q.dsy);
-      pieceOffsets_[2 * i + 1] = float(A[1][0] * q.dhx + A[1][1] * q.dhy + B[1][0] * q.dsx + B[1][1] * q.dsy);
-    }
-    offsets = pieceOffsets_.data();
+    offsets = tableOffsets(M, B, camera, table);
   } else if (const LensletMap* map = lensletMaps_.find(block, table, crossing, slope, landing)) {
     // Probes across a lenslet border: the lenslet's cached map, no curvature shift.
     offsets = map->offsets.data();
@@ -384,7 +399,18 @@ void QuadratureTile::integratePieceAt(const PolygonMoments& piece, double fracti
   } else {
     ++stats_.fallbacks;  // no map: the whole aperture at the landing point
   }
-  // The box: the variance of the piece's image on the panel (its covariance through M).
+  const double scale = fraction * weight / table.centreWeight * landing.throughput * landing.factor;
+  if (addEmission(piece, table, landing, offsets, M, shift, scale, dispersive ? primary : -1, node, rgb))
+    ++counts_.emitting;
+}
+
+// Adds scale x (the table's weights x each point's box average of its channel) to rgb, per
+// channel (`primary` only when dispersive, else all three); the box has the variance of the
+// piece's image on the panel (its covariance through M). Without offsets, the whole table's
+// weight reads the drive at the landing point. True when anything was emitted.
+bool QuadratureTile::addEmission(const PolygonMoments& piece, const ApertureTable& table, const Landing& landing,
+                                 const float* offsets, const double M[2][2], const Vec2d& shift, double scale,
+                                 int primary, int node, Vec3d& rgb) const {
   double halfU = 0.0, halfV = 0.0;
   if (offsets) {
     const double varU = M[0][0] * M[0][0] * piece.cxx + 2.0 * M[0][0] * M[0][1] * piece.cxy + M[0][1] * M[0][1] * piece.cyy;
@@ -394,11 +420,10 @@ void QuadratureTile::integratePieceAt(const PolygonMoments& piece, double fracti
   }
   const PanelEmitter& panel = context_.panel;
   const size_t n = table.points.size();
-  const double k = fraction * weight / table.centreWeight * landing.throughput * landing.factor;
   const double cu = landing.uv.x + shift.x, cv = landing.uv.y + shift.y;
   bool emitted = false;
   for (int c = 0; c < kNumPrimaries; ++c) {
-    if (dispersive && c != primary) continue;
+    if (primary >= 0 && c != primary) continue;
     double e = 0.0;
     if (offsets) {
       for (size_t i = 0; i < n; ++i) {
@@ -410,9 +435,9 @@ void QuadratureTile::integratePieceAt(const PolygonMoments& piece, double fracti
     }
     if (e == 0.0) continue;
     emitted = true;
-    rgb += (k * e) * (dispersive ? estimator_.nodes_.rgb[c][size_t(node)] : context_.channels.channelRgb(c));
+    rgb += (scale * e) * (primary >= 0 ? estimator_.nodes_.rgb[c][size_t(node)] : context_.channels.channelRgb(c));
   }
-  if (emitted) ++counts_.emitting;
+  return emitted;
 }
 
 QuadratureEstimator::QuadratureEstimator(const EstimatorContext& context) : context_(context) {

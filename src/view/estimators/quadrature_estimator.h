@@ -17,9 +17,9 @@
 //     piece's image, so an affine map integrates the pixel's area exactly;
 //   - spectrum: wavelengthNodes nodes per primary (1: the median of its spectrum, weighted by
 //     the whole spectrum's camera RGB), not tied to strata (that would tie colour to position).
-// Bias: the dropped Fresnel ghosts (paths with >= 2 reflections inside the MLA: 0.17% of the
-// energy on the test MLA), the aperture table (~1% at G = 16 at the sensor's resolution), the
-// box for a sheared image, the tables and camera taken per block.
+// Bias: the dropped Fresnel ghosts (paths with >= 2 reflections inside the MLA), the aperture
+// table's grid, the box for a sheared image, the tables and camera taken per block (their sizes:
+// docs/view-estimators.md).
 // Cost per piece and primary: 1 + 4 MLA rays (landing, pixel Jacobian) plus 2 per stratum
 // (slope Jacobian), no camera-lens rays, and one box average per table point (~0.8 G^2); per
 // block of pixels one table (~G^2 camera rays). Falls back to PointSample for the pixels of a
