@@ -31,7 +31,10 @@ struct BlockCamera {
     crossingOut = crossing + Vec2d(dCrossing[0][0] * d.x + dCrossing[0][1] * d.y,
                                    dCrossing[1][0] * d.x + dCrossing[1][1] * d.y);
     slopeOut = slope + Vec2d(dSlope[0][0] * d.x + dSlope[0][1] * d.y, dSlope[1][0] * d.x + dSlope[1][1] * d.y);
-    if (i >= 0 && size_t(i) < colourCrossing.size()) crossingOut += colourCrossing[size_t(i)], slopeOut += colourSlope[size_t(i)];
+    if (i >= 0 && size_t(i) < colourCrossing.size()) {
+      crossingOut += colourCrossing[size_t(i)];
+      slopeOut += colourSlope[size_t(i)];
+    }
     weightOut = weight + dWeight[0] * d.x + dWeight[1] * d.y;
   }
 };

@@ -89,7 +89,8 @@ void ChannelResponse::add(const std::array<float, kNumPrimaries>& emission, doub
         const SampledWavelengths wl = SampledWavelengths::sampleVisible(uLambda);
         Vec3d sum(0.0);
         for (int i = 0; i < kNumWavelengths; ++i)
-          if (wl.pdf()[i] > 0.0f) sum += sensor_.response(wl[i]) * (double(panel_.channelSpectrum(c, wl[i])) / wl.pdf()[i]);
+          if (wl.pdf()[i] > 0.0f)
+            sum += sensor_.response(wl[i]) * (double(panel_.channelSpectrum(c, wl[i])) / wl.pdf()[i]);
         rgb += kc * sum / double(kNumWavelengths);
       }
     } else {

@@ -47,9 +47,9 @@ struct LensletMap {
 };
 
 // One tile's lenslet maps, one per (table block, lenslet), measured at the reference
-// wavelength at the first ray that lands through that lenslet (one thread renders a tile in a fixed order, so the cache is
-// deterministic); a failed measurement (probes straddling a lenslet border) is retried at the
-// next ray through that lenslet.
+// wavelength at the first ray that lands through that lenslet (one thread renders a tile in a
+// fixed order, so the cache is deterministic); a failed measurement (probes straddling a
+// lenslet border) is retried at the next ray through that lenslet.
 class LensletMapCache {
  public:
   LensletMapCache(const MlaLanding& mla, float referenceLambdaNm) : mla_(mla), lambdaNm_(referenceLambdaNm) {}

@@ -27,8 +27,8 @@ struct ViewStats;
 
 // Everything an estimator reads, built once per renderView call (display frame, mm).
 struct EstimatorContext {
-  EstimatorContext(const CameraModel& camera, const CameraSensor& sensor, const MlaModel& mla, const PanelEmitter& panel,
-              const AreaMm& area, const ViewSettings& settings);
+  EstimatorContext(const CameraModel& camera, const CameraSensor& sensor, const MlaModel& mla,
+                   const PanelEmitter& panel, const AreaMm& area, const ViewSettings& settings);
   const CameraModel& camera;
   const MlaModel& mla;
   const PanelEmitter& panel;

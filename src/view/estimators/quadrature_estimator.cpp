@@ -171,7 +171,10 @@ void QuadratureTile::integrateStratum(int x, int y, int index, const ApertureTab
     StratumGeometry geometry{camera, camera.crossing, camera.slope};
     if (cameraDispersive) {  // the primary's lateral colour at its (middle) node
       const size_t i = size_t(g * nodes + nodes / 2);
-      if (i < camera.colourCrossing.size()) geometry.crossing += camera.colourCrossing[i], geometry.slope += camera.colourSlope[i];
+      if (i < camera.colourCrossing.size()) {
+        geometry.crossing += camera.colourCrossing[i];
+        geometry.slope += camera.colourSlope[i];
+      }
     }
     const ConvexPolygon onDisplay = clipToDisplay(stratum, geometry);
     const double areaOn = onDisplay.empty() ? 0.0 : onDisplay.moments().area;
@@ -385,7 +388,8 @@ void QuadratureTile::integratePieceAt(const PolygonMoments& piece, double fracti
   Vec2d shift(0.0);
   bool ok = std::abs(det) > 0.0 && measurePixelMap(piece, camera, crossing, slope, lambda, landing, M, shift);
   double(&B)[2][2] = slopeJacobian.B;
-  if (ok && !slopeJacobian.measured) ok = slopeJacobian.measured = measureSlopeMap(crossing, slope, lambda, landing, table, B);
+  if (ok && !slopeJacobian.measured)
+    ok = slopeJacobian.measured = measureSlopeMap(crossing, slope, lambda, landing, table, B);
   const float* offsets = nullptr;
   if (ok && slopeJacobian.measured) {
     offsets = tableOffsets(M, B, camera, table);
@@ -413,8 +417,10 @@ bool QuadratureTile::addEmission(const PolygonMoments& piece, const ApertureTabl
                                  int primary, int node, Vec3d& rgb) const {
   double halfU = 0.0, halfV = 0.0;
   if (offsets) {
-    const double varU = M[0][0] * M[0][0] * piece.cxx + 2.0 * M[0][0] * M[0][1] * piece.cxy + M[0][1] * M[0][1] * piece.cyy;
-    const double varV = M[1][0] * M[1][0] * piece.cxx + 2.0 * M[1][0] * M[1][1] * piece.cxy + M[1][1] * M[1][1] * piece.cyy;
+    const double varU =
+        M[0][0] * M[0][0] * piece.cxx + 2.0 * M[0][0] * M[0][1] * piece.cxy + M[0][1] * M[0][1] * piece.cyy;
+    const double varV =
+        M[1][0] * M[1][0] * piece.cxx + 2.0 * M[1][0] * M[1][1] * piece.cxy + M[1][1] * M[1][1] * piece.cyy;
     halfU = std::min(std::sqrt(3.0 * std::max(0.0, varU)), kMaxBoxHalfWidthPx);
     halfV = std::min(std::sqrt(3.0 * std::max(0.0, varV)), kMaxBoxHalfWidthPx);
   }
@@ -489,7 +495,9 @@ QuadratureEstimator::QuadratureEstimator(const EstimatorContext& context) : cont
   tableRays_ = rays;
 }
 
-std::unique_ptr<TileEstimator> QuadratureEstimator::beginTile() const { return std::make_unique<QuadratureTile>(*this); }
+std::unique_ptr<TileEstimator> QuadratureEstimator::beginTile() const {
+  return std::make_unique<QuadratureTile>(*this);
+}
 
 void QuadratureEstimator::addStats(ViewStats& stats) const { stats.quadrature.probeRays += tableRays_; }
 

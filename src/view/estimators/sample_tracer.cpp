@@ -2,6 +2,13 @@
 
 namespace inim {
 
+namespace {
+
+constexpr uint64_t kScrambleStream = 0xFFFFFFFFFFFFull;  // sample slot of the Sobol scramble seeds
+constexpr uint64_t kMlaSalt = 0x5EED0F3A11A0ull;         // salts the per-sample MLA stream
+
+}  // namespace
+
 SampleTracer::SampleTracer(const EstimatorContext& context, RayCounts& counts) : context_(context), counts_(counts) {}
 
 void SampleTracer::beginPixel(int x, int y) {

@@ -47,8 +47,4 @@ class SampleTracer {
   uint32_t scramble_[SobolSequence::kDims] = {};
 };
 
-// Sample-stream constants shared by the sampled estimators.
-constexpr uint64_t kScrambleStream = 0xFFFFFFFFFFFFull;  // sample slot of the Sobol scramble seeds
-constexpr uint64_t kMlaSalt = 0x5EED0F3A11A0ull;         // salts the per-sample MLA stream
-
 }  // namespace inim
