@@ -16,7 +16,7 @@
 #include "core/output_file.h"
 #include "core/progress.h"
 #include "core/rng.h"
-#include "render/camera.h"
+#include "camera/fov_camera.h"
 #include "render/renderer.h"
 
 namespace fs = std::filesystem;
@@ -120,7 +120,7 @@ CaptureResult captureScene(const Field& scene, const CaptureSettings& s, const s
   Intrinsics& K = res.intrinsics;
   K.width = s.width;
   K.height = s.height;
-  K.fx = K.fy = 0.5 * s.width / tanX;  // square pixels: ThinLensCamera's tanHalfY = tanX * H / W
+  K.fx = K.fy = 0.5 * s.width / tanX;  // square pixels: FovCameraModel's tanHalfY = tanX * H / W
   K.cx = 0.5 * s.width;
   K.cy = 0.5 * s.height;
 
@@ -130,16 +130,16 @@ CaptureResult captureScene(const Field& scene, const CaptureSettings& s, const s
   ProgressBar bar("capture", uint64_t(s.views), s.progress && ProgressBar::stderrIsTerminal());
   const std::vector<glm::dvec3> dirs = capDirections(s.views, s.minElevationDeg, s.maxElevationDeg);
   for (int i = 0; i < s.views; ++i) {
-    CameraSpec cs;
+    FovCameraSettings cs;
     cs.width = s.width;
     cs.height = s.height;
     cs.hfovDeg = float(s.hfovDeg);
-    cs.pose.eye = Point3(centre + res.radiusMm * dirs[i]);
-    cs.pose.lookAt = Point3(centre);
+    cs.pose.eye = roundedToFloat(centre + res.radiusMm * dirs[i]);
+    cs.pose.lookAt = roundedToFloat(centre);
     // The pose as the camera will build it, from the same float eye/look-at.
-    glm::dmat4 c2w = lookAtCameraToWorld(glm::dvec3(cs.pose.eye), glm::dvec3(cs.pose.lookAt));
-    cs.pose.up = Vec3(glm::dvec3(c2w[1]));  // == +y unless the fallback applied; keeps them in sync
-    ThinLensCamera camera(cs);
+    glm::dmat4 c2w = lookAtCameraToWorld(cs.pose.eye, cs.pose.lookAt);
+    cs.pose.up = glm::dvec3(c2w[1]);  // == +y unless the fallback applied; keeps them in sync
+    FovCameraModel camera(cs);
     RenderSettings rs;
     rs.spp = s.spp;
     rs.seed = hashCombine(s.seed, uint64_t(i));
