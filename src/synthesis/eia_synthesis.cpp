@@ -1,7 +1,6 @@
 #include "synthesis/eia_synthesis.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -13,7 +12,7 @@
 #include "core/progress.h"
 #include "core/rng.h"
 #include "rays/pinhole_rays.h"
-#include "spectral/cie.h"
+#include "spectral/cmf_table.h"
 #include "synthesis/orthoscopic.h"
 
 namespace inim {
@@ -32,45 +31,6 @@ std::string num(double v, const char* fmt = "%.4g") {
 // Salt for the synthesis' own random stream (wavelength packets), so it never coincides with
 // the stream a field derives from the same (seed, id, sample).
 constexpr uint64_t kWavelengthSalt = 0x5EEDC0105ull;
-
-// The CIE 1931 CMFs on their own 1 nm grid (360-830 nm), so a sample's XYZ costs 4 indexed
-// lookups instead of 12 binary searches: the same piecewise-linear functions as cie::X/Y/Z,
-// already divided by the y-bar integral (the normalisation of spectrumToXYZ).
-class CmfTable {
- public:
-  CmfTable() {
-    const double norm = 1.0 / cie::yIntegral();
-    for (int i = 0; i < kN; ++i) {
-      float l = kLambdaMin + float(i);
-      xyz_[size_t(i)] = Vec3(float(cie::X()(l) * norm), float(cie::Y()(l) * norm), float(cie::Z()(l) * norm));
-    }
-  }
-  Vec3 operator()(float lambda) const {
-    float u = lambda - kLambdaMin;
-    if (!(u >= 0.0f) || !(u <= float(kN - 1))) return Vec3(0.0f);
-    int i = std::min(int(u), kN - 2);
-    float t = u - float(i);
-    return xyz_[size_t(i)] + t * (xyz_[size_t(i) + 1] - xyz_[size_t(i)]);
-  }
-  // Monte Carlo XYZ of one sample (as sampledToXYZ).
-  Vec3 toXYZ(const SampledSpectrum& L, const SampledWavelengths& lambda) const {
-    Vec3 sum(0.0f);
-    for (int i = 0; i < kNumWavelengths; ++i) {
-      float pdf = lambda.pdf()[i];
-      if (pdf != 0.0f) sum += (L[i] / pdf) * (*this)(lambda[i]);
-    }
-    return sum * (1.0f / float(kNumWavelengths));
-  }
-
- private:
-  static constexpr int kN = int(kLambdaMax - kLambdaMin) + 1;
-  std::array<Vec3, size_t(kN)> xyz_{};
-};
-
-const CmfTable& cmfTable() {
-  static const CmfTable t;
-  return t;
-}
 
 void validate(const SynthesisSettings& s, const EiLayout& L) {
   if (s.displayRays && s.displayRays->size() != size_t(L.numRays()))
