@@ -290,26 +290,6 @@ Image encodeForPanel(const Image& eia, const Eotf& eotf) {
   return out;
 }
 
-TriadWavelengths parseTriadWavelengths(const Panel& panel, const std::string& text, const std::string& key) {
-  if (text.find(',') == std::string::npos) {
-    try {
-      return triadWavelengths(panel, text);
-    } catch (const InputError&) {
-      throw InputError("", key, "\"" + text + "\"", "panel, paper, zemax-sequential or three wavelengths R,G,B in nm");
-    }
-  }
-  Vec3d v = parseVec3(text, key);
-  TriadWavelengths w;
-  w.nm = {v.x, v.y, v.z};
-  for (int c = 0; c < 3; ++c)
-    if (!(v[c] >= kLambdaMin && v[c] <= kLambdaMax))
-      throw InputError("", key, "\"" + text + "\"", "wavelengths in 360-830 nm");
-  if (std::abs(v.x - v.y) < 2.0 || std::abs(v.y - v.z) < 2.0 || std::abs(v.x - v.z) < 2.0)
-    throw InputError("", key, "\"" + text + "\"", "three wavelengths at least 2 nm apart");
-  w.source = "given (" + num(v.x) + "/" + num(v.y) + "/" + num(v.z) + " nm)";
-  return w;
-}
-
 std::string summaryText(const SynthesisStats& st, GamutMapping mapping) {
   auto pct = [](uint64_t a, uint64_t b) { return b ? num(100.0 * double(a) / double(b), "%.2f") + " %" : std::string("0 %"); };
   std::string s;

@@ -26,6 +26,11 @@ struct TriadWavelengths {
 // another name.
 TriadWavelengths triadWavelengths(const Panel& panel, const std::string& choice = "panel");
 TriadWavelengths paperTriadWavelengths();
+// Triad wavelengths from "panel", "paper", "zemax-sequential" or "R,G,B" in nm (each in
+// 360-830 nm, at least 2 nm apart so EIA formation can tell them apart). InputError naming
+// `key` otherwise.
+TriadWavelengths parseTriadWavelengths(const Panel& panel, const std::string& text,
+                                       const std::string& key = "triad_wavelengths");
 
 struct TriadOptions {
   float fluxScale = 1.0f;      // flux = drive value x fluxScale
