@@ -36,12 +36,12 @@ void validate(const SynthesisSettings& s, const EiLayout& L) {
   if (s.displayRays && s.displayRays->size() != size_t(L.numRays()))
     throw InputError("", "display rays", std::to_string(s.displayRays->size()) + " rays",
                      "one ray per EI pixel of the layout (" + std::to_string(L.numRays()) + ")");
-  if (s.spp < 1) throw InputError("", "--spp", std::to_string(s.spp), "a whole number >= 1");
-  if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", num(s.vcpMm), "a finite distance in mm");
+  if (s.spp < 1) throw InputError("", "spp", std::to_string(s.spp), "a whole number >= 1");
+  if (!std::isfinite(s.vcpMm)) throw InputError("", "vcp_mm", num(s.vcpMm), "a finite distance in mm");
   if (!s.autoExposure && !(s.exposure > 0.0 && std::isfinite(s.exposure)))
-    throw InputError("", "--exposure", num(s.exposure), "a number > 0 or auto");
+    throw InputError("", "exposure", num(s.exposure), "a number > 0 or auto");
   if (s.autoExposure && !(s.autoPercentile > 0.0 && s.autoPercentile <= 100.0))
-    throw InputError("", "auto exposure percentile", num(s.autoPercentile), "a percentile in (0, 100]");
+    throw InputError("", "auto_percentile", num(s.autoPercentile), "a percentile in (0, 100]");
 }
 
 }  // namespace
@@ -236,8 +236,8 @@ SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field
     st.warnings.push_back("the whole scene (display z " + range(st.sceneLo.z, st.sceneHi.z) +
                           " mm) lies in front of the VCP at z = " + num(s.vcpMm) +
                           " mm (closer to the viewer than the near plane): no query ray reaches it, the EIA is empty "
-                          "(at most the field's background is seen); raise --vcp-mm or move the scene with "
-                          "--translate-mm");
+                          "(at most the field's background is seen); raise vcp_mm or move the scene with the "
+                          "placement's translate_mm");
   else if (st.emptyEia)
     st.warnings.push_back("no query ray hit the scene (display bounds x " + range(st.sceneLo.x, st.sceneHi.x) +
                           ", y " + range(st.sceneLo.y, st.sceneHi.y) + ", z " + range(st.sceneLo.z, st.sceneHi.z) +

@@ -30,7 +30,7 @@ namespace inim {
 
 enum class GamutMapping { Clip, Desaturate };
 const char* gamutName(GamutMapping g);
-GamutMapping parseGamut(const std::string& s, const std::string& key = "--gamut");
+GamutMapping parseGamut(const std::string& s, const std::string& key = "gamut");
 
 class PanelColor {
  public:
