@@ -1,6 +1,6 @@
 #pragma once
 // Triads: every display ray becomes three monochromatic rays, one per panel primary, each
-// carrying its drive value as flux (DESIGN.md section 1, step 5). Exported as a Zemax
+// carrying its drive value as flux (docs/design.md). Exported as a Zemax
 // spectral source file (as the paper's code did: origin at the pinhole, direction negated
 // so it points back at the panel, order R, G, B per display ray), and turned back into an
 // EIA by straight propagation to a detector at the panel plane z = -g.
