@@ -192,7 +192,7 @@ TEST(Capture, BadSettingsWriteNothing) {
   s.views = 2;
   s.minElevationDeg = 80;
   s.maxElevationDeg = 40;
-  EXPECT_EQ(expectInputError([&] { captureScene(*scene, s, out); }).key(), "elevation");
+  EXPECT_EQ(expectInputError([&] { captureScene(*scene, s, out); }).key(), "elevation_deg");
   s.maxElevationDeg = 90;
   s.radiusMm = -5.0;
   EXPECT_EQ(expectInputError([&] { captureScene(*scene, s, out); }).key(), "radius_mm");
