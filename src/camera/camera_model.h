@@ -1,7 +1,8 @@
 #pragma once
 // Viewing-camera models behind one interface: a pinhole, an ideal thin lens, and a real lens
-// (sequential surfaces traced per wavelength). Each turns a sensor sample into a world-space
-// ray in the display frame (DESIGN.md section 2), with a weight.
+// (sequential surfaces traced per wavelength); camera/fov_camera.h adds the pinhole / thin lens
+// given by a field of view that `inim render` and `inim capture` use. Each turns a sensor
+// sample into a world-space ray in the display frame (docs/design.md), with a weight.
 //
 // Image orientation: pixel (x, y) has (0, 0) at the top-left corner of the final image, row 0
 // at the top and column 0 at the left as a person looking through the camera sees the scene;

@@ -16,7 +16,7 @@
 #include "core/output_file.h"
 #include "core/progress.h"
 #include "core/rng.h"
-#include "render/camera.h"
+#include "camera/fov_camera.h"
 #include "render/renderer.h"
 
 namespace fs = std::filesystem;
@@ -78,22 +78,22 @@ nlohmann::json matrixRows(const glm::dmat4& m) {
   return rows;
 }
 
-}  // namespace
-
-CaptureResult captureScene(const Field& scene, const CaptureSettings& s, const std::string& outDir) {
+void checkSettings(const CaptureSettings& s) {
   check(s.views > 0, "views", std::to_string(s.views), "at least 1 view");
   check(s.views <= 9999, "views", std::to_string(s.views), "at most 9999 views (frame_NNNN.png)");
-  check(s.width > 0 && s.height > 0, "width/height", std::to_string(s.width) + "x" + std::to_string(s.height),
-        "a positive image size");
-  check(s.hfovDeg > 0 && s.hfovDeg < 179, "fov", num(s.hfovDeg), "a horizontal field of view in (0, 179) degrees");
+  check(s.width > 0, "width", std::to_string(s.width), "a positive image width in pixels");
+  check(s.height > 0, "height", std::to_string(s.height), "a positive image height in pixels");
+  check(s.hfovDeg > 0 && s.hfovDeg < 179, "hfov_deg", num(s.hfovDeg), "a horizontal field of view in (0, 179) degrees");
   check(s.minElevationDeg >= -90 && s.maxElevationDeg <= 90 && s.minElevationDeg <= s.maxElevationDeg,
-        "elevation", num(s.minElevationDeg) + ".." + num(s.maxElevationDeg),
+        "elevation_deg", num(s.minElevationDeg) + ".." + num(s.maxElevationDeg),
         "-90 <= min <= max <= 90 degrees above the display plane");
   check(s.spp > 0, "spp", std::to_string(s.spp), "at least 1 sample per pixel");
   check(!s.radiusMm || (*s.radiusMm > 0 && std::isfinite(*s.radiusMm)), "radius_mm",
         s.radiusMm ? num(*s.radiusMm) : "", "a positive camera distance in mm");
+}
 
-  CaptureResult res;
+// What the views look at (res.target), how far away (res.radiusMm), and the pinhole intrinsics.
+void frameTarget(const Field& scene, const CaptureSettings& s, CaptureResult& res) {
   if (s.target) {
     res.target = *s.target;
   } else {
@@ -107,7 +107,7 @@ CaptureResult captureScene(const Field& scene, const CaptureSettings& s, const s
         "target", "(" + num(t.lo.x) + ", " + num(t.lo.y) + ", " + num(t.lo.z) + ")..(" + num(t.hi.x) + ", " +
                       num(t.hi.y) + ", " + num(t.hi.z) + ")",
         "a finite box with lo <= hi");
-  const glm::dvec3 centre = t.center(), half = 0.5 * t.extent();
+  const glm::dvec3 half = 0.5 * t.extent();
   const double tanX = std::tan(0.5 * s.hfovDeg * M_PI / 180.0), tanY = tanX * s.height / s.width;
   if (s.radiusMm) {
     res.radiusMm = *s.radiusMm;
@@ -120,9 +120,47 @@ CaptureResult captureScene(const Field& scene, const CaptureSettings& s, const s
   Intrinsics& K = res.intrinsics;
   K.width = s.width;
   K.height = s.height;
-  K.fx = K.fy = 0.5 * s.width / tanX;  // square pixels: ThinLensCamera's tanHalfY = tanX * H / W
+  K.fx = K.fy = 0.5 * s.width / tanX;  // square pixels: FovCameraModel's tanHalfY = tanX * H / W
   K.cx = 0.5 * s.width;
   K.cy = 0.5 * s.height;
+}
+
+// transforms.json (instant-ngp / nerfstudio): the shared intrinsics, the frames and how they were made.
+nlohmann::json transformsJson(const CaptureSettings& s, const CaptureResult& res, nlohmann::json frames) {
+  const Intrinsics& K = res.intrinsics;
+  const Box3d& t = res.target;
+  nlohmann::json j;
+  j["camera_model"] = "OPENCV";
+  j["fl_x"] = K.fx;
+  j["fl_y"] = K.fy;
+  j["cx"] = K.cx;
+  j["cy"] = K.cy;
+  j["w"] = K.width;
+  j["h"] = K.height;
+  j["k1"] = j["k2"] = j["p1"] = j["p2"] = 0.0;
+  j["frames"] = std::move(frames);
+  j["inim_capture"] = {
+      {"scene", s.sceneFile},
+      {"units", "mm"},
+      {"_note", "poses are in the scene's own frame and units (display frame: x right, y up, z toward "
+                "the viewer, MLA plane z = 0); scene-to-dataset transform = identity"},
+      {"target_mm", {{t.lo.x, t.lo.y, t.lo.z}, {t.hi.x, t.hi.y, t.hi.z}}},
+      {"radius_mm", res.radiusMm},
+      {"elevation_deg", {s.minElevationDeg, s.maxElevationDeg}},
+      {"hfov_deg", s.hfovDeg},
+      {"spp", s.spp},
+      {"seed", s.seed},
+      {"alpha", s.writeAlpha}};
+  return j;
+}
+
+}  // namespace
+
+CaptureResult captureScene(const Field& scene, const CaptureSettings& s, const std::string& outDir) {
+  checkSettings(s);
+  CaptureResult res;
+  frameTarget(scene, s, res);
+  const glm::dvec3 centre = res.target.center();
 
   auto t0 = std::chrono::steady_clock::now();
   OutputSet outputs;
@@ -130,16 +168,16 @@ CaptureResult captureScene(const Field& scene, const CaptureSettings& s, const s
   ProgressBar bar("capture", uint64_t(s.views), s.progress && ProgressBar::stderrIsTerminal());
   const std::vector<glm::dvec3> dirs = capDirections(s.views, s.minElevationDeg, s.maxElevationDeg);
   for (int i = 0; i < s.views; ++i) {
-    CameraSpec cs;
+    FovCameraSettings cs;
     cs.width = s.width;
     cs.height = s.height;
     cs.hfovDeg = float(s.hfovDeg);
-    cs.pose.eye = Point3(centre + res.radiusMm * dirs[i]);
-    cs.pose.lookAt = Point3(centre);
+    cs.pose.eye = roundedToFloat(centre + res.radiusMm * dirs[i]);
+    cs.pose.lookAt = roundedToFloat(centre);
     // The pose as the camera will build it, from the same float eye/look-at.
-    glm::dmat4 c2w = lookAtCameraToWorld(glm::dvec3(cs.pose.eye), glm::dvec3(cs.pose.lookAt));
-    cs.pose.up = Vec3(glm::dvec3(c2w[1]));  // == +y unless the fallback applied; keeps them in sync
-    ThinLensCamera camera(cs);
+    glm::dmat4 c2w = lookAtCameraToWorld(cs.pose.eye, cs.pose.lookAt);
+    cs.pose.up = glm::dvec3(c2w[1]);  // == +y unless the fallback applied; keeps them in sync
+    FovCameraModel camera(cs);
     RenderSettings rs;
     rs.spp = s.spp;
     rs.seed = hashCombine(s.seed, uint64_t(i));
@@ -165,33 +203,11 @@ CaptureResult captureScene(const Field& scene, const CaptureSettings& s, const s
   }
   bar.finish();
 
-  nlohmann::json j;
-  j["camera_model"] = "OPENCV";
-  j["fl_x"] = K.fx;
-  j["fl_y"] = K.fy;
-  j["cx"] = K.cx;
-  j["cy"] = K.cy;
-  j["w"] = K.width;
-  j["h"] = K.height;
-  j["k1"] = j["k2"] = j["p1"] = j["p2"] = 0.0;
-  j["frames"] = frames;
-  j["inim_capture"] = {
-      {"scene", s.sceneFile},
-      {"units", "mm"},
-      {"_note", "poses are in the scene's own frame and units (display frame: x right, y up, z toward "
-                "the viewer, MLA plane z = 0); scene-to-dataset transform = identity"},
-      {"target_mm", {{t.lo.x, t.lo.y, t.lo.z}, {t.hi.x, t.hi.y, t.hi.z}}},
-      {"radius_mm", res.radiusMm},
-      {"elevation_deg", {s.minElevationDeg, s.maxElevationDeg}},
-      {"hfov_deg", s.hfovDeg},
-      {"spp", s.spp},
-      {"seed", s.seed},
-      {"alpha", s.writeAlpha}};
   res.transformsPath = (fs::path(outDir) / "transforms.json").string();
   {
     std::string tmp = outputs.add(res.transformsPath);
     std::ofstream out(tmp);
-    out << j.dump(2) << "\n";
+    out << transformsJson(s, res, std::move(frames)).dump(2) << "\n";
     if (!out.flush()) throw std::runtime_error("cannot write " + tmp);
   }
   outputs.commit();

@@ -7,7 +7,7 @@
 //   CaptureSettings s;  s.sceneFile = scene->file();
 //   CaptureResult r = captureScene(*scene, s, "out/capture");
 //
-// Where the cameras go, and why. The display (DESIGN.md) sits in the scene's frame: x right,
+// Where the cameras go, and why. The display (docs/design.md) sits in the scene's frame: x right,
 // y up, z toward the viewer, the MLA at z = 0. It only ever sends light toward +z, within its
 // viewing angle (about +-7 to 9 degrees for the prototype), and the orthoscopic query asks the
 // field for rays from the viewer's side going toward -z. A capture for display should

@@ -18,7 +18,8 @@ std::vector<glm::dvec3> capDirections(int n, double minElevationDeg, double maxE
 
 // Camera-to-world (OpenGL axes: looks down -z, +y up) of a camera at `eye` looking at
 // `target` with `up` (replaced by -z of the world when nearly parallel to the view, which
-// only happens for elevations near 0 at azimuth 90 degrees). The same axes as ThinLensCamera.
+// only happens for elevations near 0 at azimuth 90 degrees). The same axes as FovCameraModel
+// (camera/fov_camera.h).
 glm::dmat4 lookAtCameraToWorld(const glm::dvec3& eye, const glm::dvec3& target,
                                glm::dvec3 up = {0.0, 1.0, 0.0});
 

@@ -43,6 +43,7 @@
 #include "cli/commands.h"
 #include "core/parallel.h"
 #include "core/rng.h"
+#include "camera/fov_camera.h"
 #include "render/renderer.h"
 #include "scene/analytic_scene.h"
 
@@ -52,7 +53,7 @@ namespace {
 
 struct BenchContext {
   std::unique_ptr<AnalyticScene> scene;
-  CameraSpec cam;
+  FovCameraSettings cam;
   std::vector<FieldRay> rays;  // one camera ray per pixel of the render
   std::vector<SampledWavelengths> lambdas;
 };
@@ -63,14 +64,15 @@ BenchContext& context() {
     c.scene = AnalyticScene::load(defaultScenePath());
     c.cam.width = 1920;
     c.cam.height = 1080;
-    ThinLensCamera camera(c.cam);
+    FovCameraModel camera(c.cam);
     c.rays.resize(size_t(c.cam.width) * c.cam.height);
     c.lambdas.resize(c.rays.size());
     for (int y = 0; y < c.cam.height; ++y)
       for (int x = 0; x < c.cam.width; ++x) {
         uint64_t id = uint64_t(y) * c.cam.width + x;
         Rng rng = Rng::forSample(1, id);
-        Ray r = camera.generateRay(x + rng.uniform(), y + rng.uniform(), {0.5f, 0.5f});
+        Ray r;
+        camera.generateRay(Vec2(x + rng.uniform(), y + rng.uniform()), Vec2(0.5f), 550.0f, r);
         c.rays[id] = {r.o, r.d, 0.0f, kInfinity, id, 0};
         c.lambdas[id] = SampledWavelengths::sampleVisible(rng.uniform());
       }
@@ -132,7 +134,7 @@ void benchRender(benchmark::State& state) {
   RenderSettings rs;
   rs.spp = 16;
   rs.progress = false;
-  ThinLensCamera camera(c.cam);
+  FovCameraModel camera(c.cam);
   for (auto _ : state) {
     RenderResult r = renderField(*c.scene, camera, rs);
     benchmark::DoNotOptimize(r.image.data.data());

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/output_file.h"
 #include "core/parallel.h"
+#include "camera/fov_camera.h"
 #include "render/renderer.h"
 #include "scene/analytic_scene.h"
 
@@ -28,7 +29,7 @@ std::string defaultScenePath() { return dataPath("scenes/paper-fig7.json"); }
 void addRenderCommand(CLI::App& app) {
   struct Opts {
     std::string scene, out, eye = "0,0,350", lookAt = "0,0,0", up = "0,1,0", integrator;
-    CameraSpec cam;
+    FovCameraSettings cam;
     int spp = 16, maxDepth = -1;
     RunOptions run;
   };
@@ -60,7 +61,7 @@ void addRenderCommand(CLI::App& app) {
       throw InputError("", "--out", "\"" + o->out + "\"", "a file name ending in .exr");
     o->cam.pose = {parseVec3Option(o->eye, "--eye"), parseVec3Option(o->lookAt, "--look-at"),
                    parseVec3Option(o->up, "--up")};
-    ThinLensCamera camera(o->cam);  // validates sizes and pose before any work
+    FovCameraModel camera(o->cam);  // validates sizes and pose before any work
     ThreadLimit threads(o->run.threads);
 
     std::string scenePath = o->scene.empty() ? defaultScenePath() : o->scene;

@@ -1,82 +1,73 @@
 #include "render/renderer.h"
 
-#include <chrono>
-#include <vector>
+#include <algorithm>
+#include <cmath>
 
-#include "core/parallel.h"
-#include "core/progress.h"
-#include "core/rng.h"
+#include "render/field_renderer.h"
 #include "spectral/cie.h"
 #include "spectral/color.h"
 
 namespace inim {
 
-RenderResult renderField(const Field& field, const ThinLensCamera& camera, const RenderSettings& s) {
-  const int W = camera.spec().width, H = camera.spec().height, spp = std::max(1, s.spp);
-  const bool spectral = field.encoding() == FieldEncoding::Spectral;
-  Image img(W, H, {"R", "G", "B", "A", "Z"});
-  const Mat3 toRec709 = ColorSystem::xyzToRec709();
-  auto t0 = std::chrono::steady_clock::now();
-  ProgressBar bar("render", uint64_t(W) * H, s.progress && ProgressBar::stderrIsTerminal());
-  constexpr int kTile = 16;
+namespace {
 
-  parallelForTiles(W, H, [&](const Tile& tile) {
-    const int nPix = (tile.x1 - tile.x0) * (tile.y1 - tile.y0);
-    std::vector<FieldRay> rays(size_t(nPix) * spp);
-    std::vector<SampledWavelengths> lambdas(spectral ? rays.size() : 0);
-    std::vector<FieldSample> out(rays.size());
-    size_t k = 0;
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x) {
-        uint64_t pixel = uint64_t(y) * W + x;
-        for (int sIdx = 0; sIdx < spp; ++sIdx, ++k) {
-          // The camera's own stream: salted so it is independent of the field's stream.
-          Rng rng = Rng::forSample(s.seed ^ 0xC0FFEEull, pixel, sIdx);
-          Vec2 jitter(rng.uniform(), rng.uniform()), lens(rng.uniform(), rng.uniform());
-          Ray r = camera.generateRay(x + jitter.x, y + jitter.y, lens);
-          rays[k] = {r.o, r.d, 0.0f, kInfinity, pixel, uint32_t(sIdx)};
-          if (spectral) lambdas[k] = SampledWavelengths::sampleVisible(rng.uniform());
-        }
+// R, G, B (linear Rec.709 for spectral fields, the field's colour space for RGB ones), A, Z.
+class Rec709Film final : public Film {
+ public:
+  std::vector<std::string> channels() const override { return {"R", "G", "B", "A", "Z"}; }
+
+  void resolvePixel(const PixelRays& p, float* pixel) const override {
+    Vec3 acc(0.0f);
+    float alpha = 0.0f, depthSum = 0.0f;
+    int depthCount = 0;
+    for (size_t i = 0; i < p.answers.size(); ++i) {
+      const FieldSample& fs = p.answers[i];
+      const float w = p.weights[i];
+      const Vec3 c = p.spectral ? toRec709_ * xyz(fs, p.wavelengths[i], p.heroOnly) : fs.rgb;
+      if (isFinite(c)) acc += w * c;
+      alpha += w * fs.opacity;
+      if (std::isfinite(fs.depth)) {
+        depthSum += fs.depth;
+        ++depthCount;
       }
-    for (size_t b = 0; b < rays.size(); b += size_t(s.raysPerBatch)) {
-      size_t n = std::min(rays.size() - b, size_t(s.raysPerBatch));
-      field.query(std::span(rays).subspan(b, n),
-                  spectral ? std::span<const SampledWavelengths>(lambdas).subspan(b, n)
-                           : std::span<const SampledWavelengths>(),
-                  std::span(out).subspan(b, n), s.seed);
     }
-    k = 0;
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x) {
-        Vec3 acc(0.0f);
-        float alpha = 0.0f, depthSum = 0.0f;
-        int depthCount = 0;
-        for (int sIdx = 0; sIdx < spp; ++sIdx, ++k) {
-          const FieldSample& fs = out[k];
-          Vec3 c = spectral ? toRec709 * sampledToXYZ(fs.L, lambdas[k]) : fs.rgb;
-          if (isFinite(c)) acc += c;
-          alpha += fs.opacity;
-          if (std::isfinite(fs.depth)) {
-            depthSum += fs.depth;
-            ++depthCount;
-          }
-        }
-        acc /= float(spp);
-        img.at(x, y, 0) = acc.x;
-        img.at(x, y, 1) = acc.y;
-        img.at(x, y, 2) = acc.z;
-        img.at(x, y, 3) = alpha / float(spp);
-        img.at(x, y, 4) = depthCount ? depthSum / float(depthCount) : 0.0f;
-      }
-  }, &bar, kTile);
-  bar.finish();
+    acc /= float(p.spp);
+    pixel[0] = acc.x;
+    pixel[1] = acc.y;
+    pixel[2] = acc.z;
+    pixel[3] = alpha / float(p.spp);
+    pixel[4] = depthCount ? depthSum / float(depthCount) : 0.0f;
+  }
 
-  if (!spectral && field.colorSpace() != "lin_rec709")
-    ColorSystem::instance().convertImage(img, field.colorSpace(), "lin_rec709");
+ private:
+  // XYZ of one answer; a hero-only ray estimates from its hero wavelength alone, i.e. as a
+  // packet whose other wavelengths the field terminated (L[0] = 4x the hero).
+  static Vec3 xyz(const FieldSample& fs, const SampledWavelengths& wl, bool heroOnly) {
+    if (!heroOnly || fs.secondaryTerminated) return sampledToXYZ(fs.L, wl);
+    SampledSpectrum hero(0.0f);
+    hero[0] = fs.L[0] * float(kNumWavelengths);
+    return sampledToXYZ(hero, wl);
+  }
+
+  const Mat3 toRec709_ = ColorSystem::xyzToRec709();
+};
+
+}  // namespace
+
+RenderResult renderField(const Field& field, const CameraModel& camera, const RenderSettings& s) {
+  FieldRenderSettings fs;
+  fs.spp = std::max(1, s.spp);
+  fs.seed = s.seed;
+  fs.raysPerBatch = s.raysPerBatch;
+  fs.progress = s.progress;
+  fs.progressLabel = "render";
+  FieldRender r = renderThroughCamera(field, camera, IndependentPixelSampler(s.seed), Rec709Film(), fs);
+  if (field.encoding() != FieldEncoding::Spectral && field.colorSpace() != "lin_rec709")
+    ColorSystem::instance().convertImage(r.image, field.colorSpace(), "lin_rec709");
   RenderResult res;
-  res.image = std::move(img);
-  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  res.raysTraced = uint64_t(W) * H * spp;
+  res.image = std::move(r.image);
+  res.seconds = r.stats.seconds;
+  res.raysTraced = r.stats.cameraRays;
   return res;
 }
 

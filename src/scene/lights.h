@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "core/geometry.h"
-#include "scene/baked_spectrum.h"
 #include "scene/materials.h"
 #include "scene/scene_geometry.h"
+#include "spectral/baked_spectrum.h"
 
 #ifndef INIM_ALWAYS_INLINE
 #define INIM_ALWAYS_INLINE __attribute__((always_inline))

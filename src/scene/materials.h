@@ -15,8 +15,8 @@
 #include <string>
 
 #include "core/geometry.h"
-#include "scene/baked_spectrum.h"
 #include "scene/texture.h"
+#include "spectral/baked_spectrum.h"
 #include "spectral/dispersion.h"
 
 namespace inim {

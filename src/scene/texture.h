@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/geometry.h"
-#include "scene/baked_spectrum.h"
+#include "spectral/baked_spectrum.h"
 #include "spectral/rgb_to_spectrum.h"
 
 namespace inim {

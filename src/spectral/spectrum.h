@@ -1,6 +1,7 @@
 #pragma once
 // Spectral distributions: values as a function of wavelength in nm.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,9 @@ class Spectrum {
     for (int i = 0; i < kNumWavelengths; ++i) s[i] = (*this)(lambda[i]);
     return s;
   }
+  // The value at every wavelength when the spectrum is a constant by construction
+  // (ConstantSpectrum), so that users can keep it as one number; nothing otherwise.
+  virtual std::optional<float> constantValue() const { return std::nullopt; }
 };
 using SpectrumPtr = std::shared_ptr<const Spectrum>;
 
@@ -26,6 +30,7 @@ class ConstantSpectrum final : public Spectrum {
   explicit ConstantSpectrum(float c) : c_(c) {}
   float operator()(float) const override { return c_; }
   float maxValue() const override { return c_; }
+  std::optional<float> constantValue() const override { return c_; }
 
  private:
   float c_;

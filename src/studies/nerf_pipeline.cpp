@@ -29,7 +29,7 @@
 #include "radiance/radiance_field.h"
 #include "radiance/trainer.h"
 #include "radiance/volume_renderer.h"
-#include "render/camera.h"
+#include "camera/fov_camera.h"
 #include "render/renderer.h"
 #include "scene/analytic_scene.h"
 #include "studies/studies.h"
@@ -198,15 +198,15 @@ StudyReport runNerfPipeline(const StudyOptions& o) {
   {
     const std::vector<glm::dvec3> dirs = capDirections(cs.views, cs.minElevationDeg, cs.maxElevationDeg);
     const glm::dvec3 centre = cap.target.center();
-    CameraSpec spec;
+    FovCameraSettings spec;
     spec.width = cs.width;
     spec.height = cs.height;
     spec.hfovDeg = float(cs.hfovDeg);
-    spec.pose.eye = Point3(centre + cap.radiusMm * dirs[0]);
-    spec.pose.lookAt = Point3(centre);
-    const glm::dmat4 c2w = lookAtCameraToWorld(glm::dvec3(spec.pose.eye), glm::dvec3(spec.pose.lookAt));
-    spec.pose.up = Vec3(glm::dvec3(c2w[1]));
-    ThinLensCamera camera(spec);
+    spec.pose.eye = roundedToFloat(centre + cap.radiusMm * dirs[0]);
+    spec.pose.lookAt = roundedToFloat(centre);
+    const glm::dmat4 c2w = lookAtCameraToWorld(spec.pose.eye, spec.pose.lookAt);
+    spec.pose.up = glm::dvec3(c2w[1]);
+    FovCameraModel camera(spec);
     RenderSettings rs;
     rs.spp = B.truthSpp;
     rs.seed = 977;

@@ -29,7 +29,7 @@ EiLayout applyLayoutOverride(Display& d, const LayoutOverride& o) {
   try {
     return computeLayout(d);
   } catch (const InputError& e) {
-    // Name the option when the override caused it.
+    // Name the setting when the override caused it.
     if (e.key() == "viewing_distance_mm" && (o.viewingDistanceMm || o.layout))
       throw InputError(d.file, o.viewingDistanceMm ? o.distanceKey : o.layoutKey, e.value(), e.expected());
     if (e.key() == "ei_count" && o.layout)

@@ -1,7 +1,6 @@
 #include "synthesis/eia_synthesis.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -13,7 +12,7 @@
 #include "core/progress.h"
 #include "core/rng.h"
 #include "rays/pinhole_rays.h"
-#include "spectral/cie.h"
+#include "spectral/cmf_table.h"
 #include "synthesis/orthoscopic.h"
 
 namespace inim {
@@ -33,226 +32,200 @@ std::string num(double v, const char* fmt = "%.4g") {
 // the stream a field derives from the same (seed, id, sample).
 constexpr uint64_t kWavelengthSalt = 0x5EEDC0105ull;
 
-// The CIE 1931 CMFs on their own 1 nm grid (360-830 nm), so a sample's XYZ costs 4 indexed
-// lookups instead of 12 binary searches: the same piecewise-linear functions as cie::X/Y/Z,
-// already divided by the y-bar integral (the normalisation of spectrumToXYZ).
-class CmfTable {
- public:
-  CmfTable() {
-    const double norm = 1.0 / cie::yIntegral();
-    for (int i = 0; i < kN; ++i) {
-      float l = kLambdaMin + float(i);
-      xyz_[size_t(i)] = Vec3(float(cie::X()(l) * norm), float(cie::Y()(l) * norm), float(cie::Z()(l) * norm));
-    }
-  }
-  Vec3 operator()(float lambda) const {
-    float u = lambda - kLambdaMin;
-    if (!(u >= 0.0f) || !(u <= float(kN - 1))) return Vec3(0.0f);
-    int i = std::min(int(u), kN - 2);
-    float t = u - float(i);
-    return xyz_[size_t(i)] + t * (xyz_[size_t(i) + 1] - xyz_[size_t(i)]);
-  }
-  // Monte Carlo XYZ of one sample (as sampledToXYZ).
-  Vec3 toXYZ(const SampledSpectrum& L, const SampledWavelengths& lambda) const {
-    Vec3 sum(0.0f);
-    for (int i = 0; i < kNumWavelengths; ++i) {
-      float pdf = lambda.pdf()[i];
-      if (pdf != 0.0f) sum += (L[i] / pdf) * (*this)(lambda[i]);
-    }
-    return sum * (1.0f / float(kNumWavelengths));
-  }
-
- private:
-  static constexpr int kN = int(kLambdaMax - kLambdaMin) + 1;
-  std::array<Vec3, size_t(kN)> xyz_{};
-};
-
-const CmfTable& cmfTable() {
-  static const CmfTable t;
-  return t;
-}
-
 void validate(const SynthesisSettings& s, const EiLayout& L) {
   if (s.displayRays && s.displayRays->size() != size_t(L.numRays()))
     throw InputError("", "display rays", std::to_string(s.displayRays->size()) + " rays",
                      "one ray per EI pixel of the layout (" + std::to_string(L.numRays()) + ")");
-  if (s.spp < 1) throw InputError("", "--spp", std::to_string(s.spp), "a whole number >= 1");
-  if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", num(s.vcpMm), "a finite distance in mm");
+  if (s.spp < 1) throw InputError("", "spp", std::to_string(s.spp), "a whole number >= 1");
+  if (!std::isfinite(s.vcpMm)) throw InputError("", "vcp_mm", num(s.vcpMm), "a finite distance in mm");
   if (!s.autoExposure && !(s.exposure > 0.0 && std::isfinite(s.exposure)))
-    throw InputError("", "--exposure", num(s.exposure), "a number > 0 or auto");
+    throw InputError("", "exposure", num(s.exposure), "a number > 0 or auto");
   if (s.autoExposure && !(s.autoPercentile > 0.0 && s.autoPercentile <= 100.0))
-    throw InputError("", "auto exposure percentile", num(s.autoPercentile), "a percentile in (0, 100]");
+    throw InputError("", "auto_percentile", num(s.autoPercentile), "a percentile in (0, 100]");
 }
 
-}  // namespace
-
-SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field& field,
-                              const SynthesisSettings& s) {
-  const auto t0 = Clock::now();
-  validate(s, L);
-  const OrthoscopicQuery oq(s.placement.toDisplay(), s.vcpMm);
-  const PanelColor color(panel);
-  const bool spectral = field.encoding() == FieldEncoding::Spectral;
-  const std::string colorSpace = field.colorSpace();
-  const int spp = s.spp;
-  const int64_t N = L.numRays();
-  // Rays per EI (hex EIs differ in size: the mean, for batching only).
-  const int64_t perEi = L.isHex() ? std::max<int64_t>(1, N / std::max<int64_t>(1, L.numEis())) : L.raysPerEi();
-
-  SynthesisResult res;
-  SynthesisStats& st = res.stats;
-  st.displayRays = uint64_t(N);
-  st.queries = uint64_t(N) * uint64_t(spp);
-
-  // Where the scene lies in the display frame, from the field's bounds.
-  {
-    Point3 lo, hi;
-    field.bounds(lo, hi);
-    Point3d dlo(std::numeric_limits<double>::infinity()), dhi(-std::numeric_limits<double>::infinity());
-    for (int c = 0; c < 8; ++c) {
-      Point3d p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
-      Point3d q = oq.fieldToDisplay().point(p);
-      dlo = glm::min(dlo, q);
-      dhi = glm::max(dhi, q);
-    }
-    st.sceneLo = dlo;
-    st.sceneHi = dhi;
-    st.sceneBehindVcp = dlo.z > s.vcpMm;
-    st.sceneClipped = !st.sceneBehindVcp && dhi.z > s.vcpMm;
+// Where the scene lies in the display frame, from the field's bounds, and whether the VCP
+// clips it.
+void locateScene(const Field& field, const OrthoscopicQuery& oq, double vcpMm, SynthesisStats& st) {
+  Point3 lo, hi;
+  field.bounds(lo, hi);
+  Point3d dlo(std::numeric_limits<double>::infinity()), dhi(-std::numeric_limits<double>::infinity());
+  for (int c = 0; c < 8; ++c) {
+    Point3d p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+    Point3d q = oq.fieldToDisplay().point(p);
+    dlo = glm::min(dlo, q);
+    dhi = glm::max(dhi, q);
   }
+  st.sceneLo = dlo;
+  st.sceneHi = dhi;
+  st.sceneBehindVcp = dlo.z > vcpMm;
+  st.sceneClipped = !st.sceneBehindVcp && dhi.z > vcpMm;
+}
 
-  std::vector<std::string> channels = {"R", "G", "B"};
-  if (s.aovs) channels.insert(channels.end(), {"A", "Z"});
-  res.eia = Image(L.panelW, L.panelH, channels);
-  Image& img = res.eia;
-  res.drive.assign(size_t(N) * 3, 0.0f);
-  std::vector<uint8_t> hitFlag(size_t(N), 0);
-  const glm::mat3 xyzToDrive = glm::mat3(color.xyzToDrive());
-  const float onPlaneTol = float(0.5 * L.pixelMm);
-  const CmfTable& cmf = cmfTable();
+// The field queries of the display rays, `spp` per ray, and their mean colour as unexposed
+// drive values (res.drive), with the hit statistics and the A, Z channels.
+class DisplayRayQueries {
+ public:
+  DisplayRayQueries(const EiLayout& L, const Field& field, const SynthesisSettings& s, const OrthoscopicQuery& oq,
+                    const PanelColor& color, SynthesisResult& res, std::vector<uint8_t>& hitFlag)
+      : L_(L), field_(field), s_(s), oq_(oq), res_(res), hitFlag_(hitFlag),
+        spectral_(field.encoding() == FieldEncoding::Spectral), colorSpace_(field.colorSpace()), spp_(s.spp),
+        xyzToDrive_(glm::mat3(color.xyzToDrive())), onPlaneTol_(float(0.5 * L.pixelMm)),
+        batchRays_(std::max<int64_t>(1, s.raysPerBatch / s.spp)), cmf_(cmfTable()) {}
 
-  std::atomic<uint64_t> hits{0}, realRays{0}, virtualRays{0};
-  ProgressBar bar("eia", uint64_t(N), s.progress && ProgressBar::stderrIsTerminal());
-  const int64_t batchRays = std::max<int64_t>(1, s.raysPerBatch / spp);  // display rays a batch
-  const int64_t grainEis = std::max<int64_t>(1, batchRays / std::max<int64_t>(1, perEi));
+  // Display rays a batch.
+  int64_t batchRays() const { return batchRays_; }
 
-  const auto tq = Clock::now();
-  parallelForRange(
-      L.numEis(),
-      [&](int64_t e0, int64_t e1) {
-        const int64_t r0 = L.rayBeginOfEiOrder(e0), r1 = L.rayBeginOfEiOrder(e1);
-        std::vector<FieldRay> rays;
-        std::vector<SampledWavelengths> lambdas;
-        std::vector<FieldSample> out;
-        std::vector<OrthoscopicQuery::Query> qs;  // one per display ray of the batch
-        std::vector<Vec3> acc;
-        uint64_t localHits = 0, localReal = 0, localVirtual = 0;
-        for (int64_t b0 = r0; b0 < r1; b0 += batchRays) {
-          const int64_t b1 = std::min(r1, b0 + batchRays);
-          const size_t nr = size_t(b1 - b0), nq = nr * size_t(spp);
-          rays.resize(nq);
-          out.assign(nq, FieldSample{});
-          lambdas.resize(spectral ? nq : 0);
-          qs.resize(nr);
-          for (int64_t r = b0; r < b1; ++r) {
-            const size_t i = size_t(r - b0);
-            const RayD pr = s.displayRays ? RayD{Point3d(s.displayRays->ray(size_t(r)).o),
-                                                 glm::normalize(Vec3d(s.displayRays->ray(size_t(r)).d))}
-                                          : pinholeRay(L, r);
-            for (int k = 0; k < spp; ++k) {
-              OrthoscopicQuery::Query q = oq.make(pr.o, pr.d, uint64_t(r), uint32_t(k));
-              rays[i * size_t(spp) + size_t(k)] = q.ray;
-              if (k == 0) qs[i] = q;
-              if (spectral) {
-                // Wavelengths stratified over the ray's samples (and over the packet's 4).
-                Rng rng = Rng::forSample(s.seed ^ kWavelengthSalt, uint64_t(r), uint64_t(k));
-                float u = (float(k) + rng.uniform()) / float(spp);
-                lambdas[i * size_t(spp) + size_t(k)] = SampledWavelengths::sampleVisible(std::min(u, 0x1.fffffep-1f));
-              }
-            }
-          }
-          field.query(rays, spectral ? std::span<const SampledWavelengths>(lambdas)
+  // The rays of EIs [e0, e1) (EI order).
+  void run(int64_t e0, int64_t e1) {
+    const int64_t r0 = L_.rayBeginOfEiOrder(e0), r1 = L_.rayBeginOfEiOrder(e1);
+    Batch b;
+    Counts local;
+    for (int64_t b0 = r0; b0 < r1; b0 += batchRays_) {
+      const int64_t b1 = std::min(r1, b0 + batchRays_);
+      makeQueries(b0, b1, b);
+      field_.query(b.rays, spectral_ ? std::span<const SampledWavelengths>(b.lambdas)
                                      : std::span<const SampledWavelengths>(),
-                      out, s.seed);
-          acc.assign(nr, Vec3(0.0f));
-          for (size_t i = 0; i < nr; ++i) {
-            const int64_t r = b0 + int64_t(i);
-            const OrthoscopicQuery::Query& q = qs[i];
-            Vec3 sum(0.0f);
-            float alpha = 0.0f, zSum = 0.0f;
-            int zCount = 0;
-            if (q.ray.tFar >= 0.0f) {
-              for (int k = 0; k < spp; ++k) {
-                const size_t j = i * size_t(spp) + size_t(k);
-                const FieldSample& fs = out[j];
-                Vec3 c = spectral ? cmf.toXYZ(fs.L, lambdas[j]) : fs.rgb;
-                if (isFinite(c)) sum += c;
-                if (std::isfinite(fs.opacity)) alpha += fs.opacity;
-                if (std::isfinite(fs.depth) && fs.opacity > 0.0f) {
-                  zSum += float(OrthoscopicQuery::hitZ(q, fs.depth));
-                  ++zCount;
-                }
-              }
-            }
-            acc[i] = sum / float(spp);
-            if (zCount > 0) {
-              hitFlag[size_t(r)] = 1;
-              ++localHits;
-              float z = zSum / float(zCount);
-              if (z > onPlaneTol) ++localReal;
-              if (z < -onPlaneTol) ++localVirtual;
-              if (s.aovs) {
-                PixelCoord p = eiaPixel(L, rayAddress(L, r));
-                img.at(L.panelCol0 + p.col, L.panelRow0 + p.row, 3) = alpha / float(spp);
-                img.at(L.panelCol0 + p.col, L.panelRow0 + p.row, 4) = z;
-              }
-            }
-          }
-          if (!spectral) rgbToXYZInPlace(acc, colorSpace);
-          for (size_t i = 0; i < nr; ++i) {
-            Vec3 d = xyzToDrive * acc[i];
-            float* o = &res.drive[size_t(b0 + int64_t(i)) * 3];
-            o[0] = d.x, o[1] = d.y, o[2] = d.z;
-          }
-        }
-        hits += localHits;
-        realRays += localReal;
-        virtualRays += localVirtual;
-        bar.add(uint64_t(r1 - r0));
-      },
-      nullptr, grainEis);
-  bar.finish();
-  st.hitRays = hits;
-  st.realRays = realRays;
-  st.virtualRays = virtualRays;
-  st.emptyEia = st.hitRays == 0;
+                   b.out, s_.seed);
+      resolve(b0, b1, b, local);
+    }
+    hits += local.hits;
+    realRays += local.real;
+    virtualRays += local.virtualRays;
+  }
 
-  // Exposure: fixed, or the one that maps the chosen percentile of the brightest channel of
-  // the pixels that see the scene to full drive.
-  const Vec3 lumW = Vec3(color.luminanceWeights());
-  double exposure = s.exposure;
-  if (s.autoExposure) {
-    std::vector<float> Y;
-    Y.reserve(size_t(st.hitRays));
-    for (int64_t r = 0; r < N; ++r)
-      if (hitFlag[size_t(r)]) {
-        const float* d = &res.drive[size_t(r) * 3];
-        Y.push_back(std::max({d[0], d[1], d[2]}));
+  // Display rays with a hit, and of those, in front of / behind the MLA plane.
+  std::atomic<uint64_t> hits{0}, realRays{0}, virtualRays{0};
+
+ private:
+  struct Batch {
+    std::vector<FieldRay> rays;
+    std::vector<SampledWavelengths> lambdas;
+    std::vector<FieldSample> out;
+    std::vector<OrthoscopicQuery::Query> qs;  // one per display ray of the batch
+    std::vector<Vec3> acc;
+  };
+  struct Counts {
+    uint64_t hits = 0, real = 0, virtualRays = 0;
+  };
+
+  void makeQueries(int64_t b0, int64_t b1, Batch& b) const {
+    const size_t nr = size_t(b1 - b0), nq = nr * size_t(spp_);
+    b.rays.resize(nq);
+    b.out.assign(nq, FieldSample{});
+    b.lambdas.resize(spectral_ ? nq : 0);
+    b.qs.resize(nr);
+    for (int64_t r = b0; r < b1; ++r) {
+      const size_t i = size_t(r - b0);
+      const RayD pr = s_.displayRays ? RayD{Point3d(s_.displayRays->ray(size_t(r)).o),
+                                            glm::normalize(Vec3d(s_.displayRays->ray(size_t(r)).d))}
+                                     : pinholeRay(L_, r);
+      for (int k = 0; k < spp_; ++k) {
+        OrthoscopicQuery::Query q = oq_.make(pr.o, pr.d, uint64_t(r), uint32_t(k));
+        b.rays[i * size_t(spp_) + size_t(k)] = q.ray;
+        if (k == 0) b.qs[i] = q;
+        if (spectral_) {
+          // Wavelengths stratified over the ray's samples (and over the packet's 4).
+          Rng rng = Rng::forSample(s_.seed ^ kWavelengthSalt, uint64_t(r), uint64_t(k));
+          float u = (float(k) + rng.uniform()) / float(spp_);
+          b.lambdas[i * size_t(spp_) + size_t(k)] = SampledWavelengths::sampleVisible(std::min(u, 0x1.fffffep-1f));
+        }
       }
-    exposure = 1.0;
-    if (!Y.empty()) {
-      size_t k = std::min(Y.size() - 1, size_t(std::floor(s.autoPercentile / 100.0 * double(Y.size() - 1) + 0.5)));
-      std::nth_element(Y.begin(), Y.begin() + std::ptrdiff_t(k), Y.end());
-      if (Y[k] > 0.0f && std::isfinite(Y[k])) exposure = 1.0 / double(Y[k]);
     }
   }
-  st.exposureUsed = exposure;
-  Vec3 gains = Vec3(float(exposure));
-  if (s.whiteBalanceD65) gains *= Vec3(color.d65WhiteGains());
 
+  void resolve(int64_t b0, int64_t b1, Batch& b, Counts& local) {
+    const size_t nr = size_t(b1 - b0);
+    b.acc.assign(nr, Vec3(0.0f));
+    for (size_t i = 0; i < nr; ++i) b.acc[i] = resolveRay(b0 + int64_t(i), i, b, local);
+    if (!spectral_) rgbToXYZInPlace(b.acc, colorSpace_);
+    for (size_t i = 0; i < nr; ++i) {
+      Vec3 d = xyzToDrive_ * b.acc[i];
+      float* o = &res_.drive[size_t(b0 + int64_t(i)) * 3];
+      o[0] = d.x, o[1] = d.y, o[2] = d.z;
+    }
+  }
+
+  // The mean colour of display ray r (index i in the batch): XYZ, or the field's RGB.
+  Vec3 resolveRay(int64_t r, size_t i, const Batch& b, Counts& local) {
+    const OrthoscopicQuery::Query& q = b.qs[i];
+    Vec3 sum(0.0f);
+    float alpha = 0.0f, zSum = 0.0f;
+    int zCount = 0;
+    if (q.ray.tFar >= 0.0f) {
+      for (int k = 0; k < spp_; ++k) {
+        const size_t j = i * size_t(spp_) + size_t(k);
+        const FieldSample& fs = b.out[j];
+        Vec3 c = spectral_ ? cmf_.toXYZ(fs.L, b.lambdas[j]) : fs.rgb;
+        if (isFinite(c)) sum += c;
+        if (std::isfinite(fs.opacity)) alpha += fs.opacity;
+        if (std::isfinite(fs.depth) && fs.opacity > 0.0f) {
+          zSum += float(OrthoscopicQuery::hitZ(q, fs.depth));
+          ++zCount;
+        }
+      }
+    }
+    if (zCount > 0) {
+      hitFlag_[size_t(r)] = 1;
+      ++local.hits;
+      float z = zSum / float(zCount);
+      if (z > onPlaneTol_) ++local.real;
+      if (z < -onPlaneTol_) ++local.virtualRays;
+      if (s_.aovs) {
+        PixelCoord p = eiaPixel(L_, rayAddress(L_, r));
+        res_.eia.at(L_.panelCol0 + p.col, L_.panelRow0 + p.row, 3) = alpha / float(spp_);
+        res_.eia.at(L_.panelCol0 + p.col, L_.panelRow0 + p.row, 4) = z;
+      }
+    }
+    return sum / float(spp_);
+  }
+
+  const EiLayout& L_;
+  const Field& field_;
+  const SynthesisSettings& s_;
+  const OrthoscopicQuery& oq_;
+  SynthesisResult& res_;
+  std::vector<uint8_t>& hitFlag_;
+  const bool spectral_;
+  const std::string colorSpace_;
+  const int spp_;
+  const glm::mat3 xyzToDrive_;
+  const float onPlaneTol_;
+  const int64_t batchRays_;
+  const CmfTable& cmf_;
+};
+
+// Exposure: fixed, or the one that maps the chosen percentile of the brightest channel of the
+// pixels that see the scene to full drive.
+double chooseExposure(const SynthesisSettings& s, const std::vector<float>& drive, const std::vector<uint8_t>& hitFlag,
+                      uint64_t hitRays) {
+  if (!s.autoExposure) return s.exposure;
+  std::vector<float> Y;
+  Y.reserve(size_t(hitRays));
+  for (size_t r = 0; r < hitFlag.size(); ++r)
+    if (hitFlag[r]) {
+      const float* d = &drive[r * 3];
+      Y.push_back(std::max({d[0], d[1], d[2]}));
+    }
+  double exposure = 1.0;
+  if (!Y.empty()) {
+    size_t k = std::min(Y.size() - 1, size_t(std::floor(s.autoPercentile / 100.0 * double(Y.size() - 1) + 0.5)));
+    std::nth_element(Y.begin(), Y.begin() + std::ptrdiff_t(k), Y.end());
+    if (Y[k] > 0.0f && std::isfinite(Y[k])) exposure = 1.0 / double(Y[k]);
+  }
+  return exposure;
+}
+
+// Exposure and white gains, then the gamut mapping, on every drive value; the EIA pixels.
+void exposeAndMapGamut(const EiLayout& L, const PanelColor& color, const SynthesisSettings& s, SynthesisResult& res) {
+  SynthesisStats& st = res.stats;
+  const Vec3 lumW = Vec3(color.luminanceWeights());
+  Vec3 gains = Vec3(float(st.exposureUsed));
+  if (s.whiteBalanceD65) gains *= Vec3(color.d65WhiteGains());
+  Image& img = res.eia;
   std::mutex statsMutex;
   parallelForRange(
-      N,
+      L.numRays(),
       [&](int64_t a, int64_t b) {
         GamutStats local;
         for (int64_t r = a; r < b; ++r) {
@@ -269,22 +242,70 @@ SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field
         st.gamut += local;
       },
       nullptr, 1 << 14);
-  st.querySeconds = std::chrono::duration<double>(Clock::now() - tq).count();
+}
 
+void addSceneWarnings(double vcpMm, SynthesisStats& st) {
   auto range = [](double a, double b) { return num(a, "%.3g") + " to " + num(b, "%.3g"); };
   if (st.sceneBehindVcp)
     st.warnings.push_back("the whole scene (display z " + range(st.sceneLo.z, st.sceneHi.z) +
-                          " mm) lies in front of the VCP at z = " + num(s.vcpMm) +
+                          " mm) lies in front of the VCP at z = " + num(vcpMm) +
                           " mm (closer to the viewer than the near plane): no query ray reaches it, the EIA is empty "
-                          "(at most the field's background is seen); raise --vcp-mm or move the scene with "
-                          "--translate-mm");
+                          "(at most the field's background is seen); raise vcp_mm or move the scene with the "
+                          "placement's translate_mm");
   else if (st.emptyEia)
     st.warnings.push_back("no query ray hit the scene (display bounds x " + range(st.sceneLo.x, st.sceneHi.x) +
                           ", y " + range(st.sceneLo.y, st.sceneHi.y) + ", z " + range(st.sceneLo.z, st.sceneHi.z) +
                           " mm): the EIA is empty (at most the field's background is seen)");
   if (st.sceneClipped)
     st.notes.push_back("part of the scene (up to z = " + num(st.sceneHi.z) + " mm) lies in front of the VCP at z = " +
-                          num(s.vcpMm) + " mm and is clipped");
+                          num(vcpMm) + " mm and is clipped");
+}
+
+}  // namespace
+
+SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field& field,
+                              const SynthesisSettings& s) {
+  const auto t0 = Clock::now();
+  validate(s, L);
+  const OrthoscopicQuery oq(s.placement.toDisplay(), s.vcpMm);
+  const PanelColor color(panel);
+  const int64_t N = L.numRays();
+  // Rays per EI (hex EIs differ in size: the mean, for batching only).
+  const int64_t perEi = L.isHex() ? std::max<int64_t>(1, N / std::max<int64_t>(1, L.numEis())) : L.raysPerEi();
+
+  SynthesisResult res;
+  SynthesisStats& st = res.stats;
+  st.displayRays = uint64_t(N);
+  st.queries = uint64_t(N) * uint64_t(s.spp);
+  locateScene(field, oq, s.vcpMm, st);
+
+  std::vector<std::string> channels = {"R", "G", "B"};
+  if (s.aovs) channels.insert(channels.end(), {"A", "Z"});
+  res.eia = Image(L.panelW, L.panelH, channels);
+  res.drive.assign(size_t(N) * 3, 0.0f);
+  std::vector<uint8_t> hitFlag(size_t(N), 0);
+
+  ProgressBar bar("eia", uint64_t(N), s.progress && ProgressBar::stderrIsTerminal());
+  DisplayRayQueries queries(L, field, s, oq, color, res, hitFlag);
+  const int64_t grainEis = std::max<int64_t>(1, queries.batchRays() / std::max<int64_t>(1, perEi));
+  const auto tq = Clock::now();
+  parallelForRange(
+      L.numEis(),
+      [&](int64_t e0, int64_t e1) {
+        queries.run(e0, e1);
+        bar.add(uint64_t(L.rayBeginOfEiOrder(e1) - L.rayBeginOfEiOrder(e0)));
+      },
+      nullptr, grainEis);
+  bar.finish();
+  st.hitRays = queries.hits;
+  st.realRays = queries.realRays;
+  st.virtualRays = queries.virtualRays;
+  st.emptyEia = st.hitRays == 0;
+
+  st.exposureUsed = chooseExposure(s, res.drive, hitFlag, st.hitRays);
+  exposeAndMapGamut(L, color, s, res);
+  st.querySeconds = std::chrono::duration<double>(Clock::now() - tq).count();
+  addSceneWarnings(s.vcpMm, st);
   st.seconds = secondsSince(t0);
   return res;
 }
@@ -328,26 +349,6 @@ Image encodeForPanel(const Image& eia, const Eotf& eotf) {
       }
   }, nullptr, 1 << 15);
   return out;
-}
-
-TriadWavelengths parseTriadWavelengths(const Panel& panel, const std::string& text, const std::string& key) {
-  if (text.find(',') == std::string::npos) {
-    try {
-      return triadWavelengths(panel, text);
-    } catch (const InputError&) {
-      throw InputError("", key, "\"" + text + "\"", "panel, paper, zemax-sequential or three wavelengths R,G,B in nm");
-    }
-  }
-  Vec3d v = parseVec3(text, key);
-  TriadWavelengths w;
-  w.nm = {v.x, v.y, v.z};
-  for (int c = 0; c < 3; ++c)
-    if (!(v[c] >= kLambdaMin && v[c] <= kLambdaMax))
-      throw InputError("", key, "\"" + text + "\"", "wavelengths in 360-830 nm");
-  if (std::abs(v.x - v.y) < 2.0 || std::abs(v.y - v.z) < 2.0 || std::abs(v.x - v.z) < 2.0)
-    throw InputError("", key, "\"" + text + "\"", "three wavelengths at least 2 nm apart");
-  w.source = "given (" + num(v.x) + "/" + num(v.y) + "/" + num(v.z) + " nm)";
-  return w;
 }
 
 std::string summaryText(const SynthesisStats& st, GamutMapping mapping) {

@@ -97,12 +97,6 @@ Image onPanel(const EiLayout& L, const Image& eiaAreaImage);
 // Drive values encoded through the panel's EOTF (RGB, [0, 1], ready for an 8-bit PNG).
 Image encodeForPanel(const Image& eia, const Eotf& eotf);
 
-// Triad wavelengths from "panel", "paper", "zemax-sequential" or "R,G,B" in nm (each in
-// 360-830 nm, at least 2 nm apart so EIA formation can tell them apart). InputError naming
-// `key` otherwise.
-TriadWavelengths parseTriadWavelengths(const Panel& panel, const std::string& text,
-                                       const std::string& key = "--triad-wavelengths");
-
 // A short human-readable summary (rays, time, rays/s, hits, gamut, warnings).
 std::string summaryText(const SynthesisStats& st, const GamutMapping mapping);
 

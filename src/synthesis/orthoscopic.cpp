@@ -8,7 +8,7 @@ namespace inim {
 
 OrthoscopicQuery::OrthoscopicQuery(const Transform& fieldToDisplay, double vcpMm)
     : toDisplay_(fieldToDisplay), toField_(fieldToDisplay.inverse()), vcp_(vcpMm) {
-  if (!std::isfinite(vcpMm)) throw InputError("", "--vcp-mm", std::to_string(vcpMm), "a finite distance in mm");
+  if (!std::isfinite(vcpMm)) throw InputError("", "vcp_mm", std::to_string(vcpMm), "a finite distance in mm");
 }
 
 OrthoscopicQuery::Query OrthoscopicQuery::make(const Point3d& pinhole, const Vec3d& d, uint64_t id,

@@ -1,5 +1,5 @@
 #pragma once
-// The orthoscopic query (DESIGN.md section 1, step 3): every display ray is reversed. It
+// The orthoscopic query (docs/design.md): every display ray is reversed. It
 // starts on the virtual camera plane (VCP) z = D_VCP, on the display ray itself
 // (o = pinhole + d * D_VCP / d.z), and goes into the scene along -d. The VCP is the near
 // clipping plane: the query interval starts there (t = 0), so whatever lies closer to the

@@ -1,5 +1,5 @@
 #pragma once
-// Colour to the panel (DESIGN.md section 1, step 4): field radiance -> CIE XYZ -> the panel's
+// Colour to the panel (docs/design.md): field radiance -> CIE XYZ -> the panel's
 // native linear RGB -> exposure / white scaling -> gamut mapping -> linear drive values.
 //
 // The native RGB is defined by the panel's primaries: the matrix M whose columns are the XYZ
@@ -30,7 +30,7 @@ namespace inim {
 
 enum class GamutMapping { Clip, Desaturate };
 const char* gamutName(GamutMapping g);
-GamutMapping parseGamut(const std::string& s, const std::string& key = "--gamut");
+GamutMapping parseGamut(const std::string& s, const std::string& key = "gamut");
 
 class PanelColor {
  public:

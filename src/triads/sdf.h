@@ -1,5 +1,5 @@
 #pragma once
-// The Zemax OpticStudio binary source file (.SDF, spectral ray format), DESIGN.md section 4.
+// The Zemax OpticStudio binary source file (.SDF, spectral ray format), docs/design.md.
 // Little-endian, a 208-byte header, then 32 bytes a ray: float32 x y z l m n flux
 // wavelength_um. Written with fixed-width types and explicit little-endian byte order (the
 // paper's writer used a C "long", which is 8 bytes on Linux and broke its header).

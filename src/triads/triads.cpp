@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -15,10 +17,55 @@ TriadWavelengths triadWavelengths(const Panel& panel, const std::string& choice)
   if (choice == "paper") return paperTriadWavelengths();
   if (choice == "zemax-sequential") return {{620.0, 525.0, 460.0}, "paper's sequential model (620/525/460 nm)"};
   if (choice != "panel")
-    throw InputError("", "triad wavelengths", "\"" + choice + "\"", "one of: panel, paper, zemax-sequential");
+    throw InputError("", "triad_wavelengths", "\"" + choice + "\"", "one of: panel, paper, zemax-sequential");
   TriadWavelengths w;
   for (int c = 0; c < 3; ++c) w.nm[size_t(c)] = primaryPeakNm(panel.primaries[size_t(c)]);
   w.source = "panel primary peaks";
+  return w;
+}
+
+namespace {
+
+// Exactly three finite numbers separated by commas (spaces allowed around them).
+bool parseThreeNumbers(const std::string& text, std::array<double, 3>& v) {
+  const char* p = text.c_str();
+  for (size_t i = 0; i < 3; ++i) {
+    char* end = nullptr;
+    v[i] = std::strtod(p, &end);
+    if (end == p || !std::isfinite(v[i])) return false;
+    p = end;
+    while (*p == ' ') ++p;
+    if (i < 2 && *p++ != ',') return false;
+  }
+  return *p == '\0';
+}
+
+std::string wavelengthText(double nm) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", nm);
+  return buf;
+}
+
+}  // namespace
+
+TriadWavelengths parseTriadWavelengths(const Panel& panel, const std::string& text, const std::string& key) {
+  if (text.find(',') == std::string::npos) {
+    try {
+      return triadWavelengths(panel, text);
+    } catch (const InputError&) {
+      throw InputError("", key, "\"" + text + "\"", "panel, paper, zemax-sequential or three wavelengths R,G,B in nm");
+    }
+  }
+  TriadWavelengths w;
+  if (!parseThreeNumbers(text, w.nm))
+    throw InputError("", key, "\"" + text + "\"", "three comma-separated wavelengths R,G,B in nm");
+  for (double nm : w.nm)
+    if (!(nm >= kLambdaMin && nm <= kLambdaMax)) throw InputError("", key, "\"" + text + "\"", "wavelengths in 360-830 nm");
+  const auto& [r, g, b] = w.nm;
+  if (std::abs(r - g) < 2.0 || std::abs(g - b) < 2.0 || std::abs(r - b) < 2.0)
+    throw InputError("", key, "\"" + text + "\"", "three wavelengths at least 2 nm apart");
+  // Written into SDF descriptions: the format is part of the output.
+  w.source = "given (" + wavelengthText(r) + "/" + wavelengthText(g) + "/" + wavelengthText(b) + " nm)";
   return w;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // Triads: every display ray becomes three monochromatic rays, one per panel primary, each
-// carrying its drive value as flux (DESIGN.md section 1, step 5). Exported as a Zemax
+// carrying its drive value as flux (docs/design.md). Exported as a Zemax
 // spectral source file (as the paper's code did: origin at the pinhole, direction negated
 // so it points back at the panel, order R, G, B per display ray), and turned back into an
 // EIA by straight propagation to a detector at the panel plane z = -g.
@@ -26,6 +26,11 @@ struct TriadWavelengths {
 // another name.
 TriadWavelengths triadWavelengths(const Panel& panel, const std::string& choice = "panel");
 TriadWavelengths paperTriadWavelengths();
+// Triad wavelengths from "panel", "paper", "zemax-sequential" or "R,G,B" in nm (each in
+// 360-830 nm, at least 2 nm apart so EIA formation can tell them apart). InputError naming
+// `key` otherwise.
+TriadWavelengths parseTriadWavelengths(const Panel& panel, const std::string& text,
+                                       const std::string& key = "triad_wavelengths");
 
 struct TriadOptions {
   float fluxScale = 1.0f;      // flux = drive value x fluxScale

@@ -68,7 +68,7 @@ Json jsonFromRows(const std::vector<std::array<double, 4>>& rows) {
 }  // namespace
 
 TEST(LensLoader, ShippedLensEflsByRealRayTracing) {
-  // DESIGN.md 4b: paraxial EFL 50.36 mm and 249.57 mm; a real near-axis trace must agree.
+  // docs/design.md: paraxial EFL 50.36 mm and 249.57 mm; a real near-axis trace must agree.
   LensInfo dg = analyzeLens(loadLens("dgauss.50mm"));
   LensInfo tele = analyzeLens(loadLens("telephoto.250mm"));
   EXPECT_NEAR(dg.eflMm, 50.36, 0.005 * 50.36);

@@ -13,7 +13,7 @@
 #include "capture/capture_poses.h"
 #include "core/output_file.h"
 #include "expect_input_error.h"
-#include "render/camera.h"
+#include "camera/fov_camera.h"
 #include "scene/analytic_scene.h"
 #include "scratch_dir.h"
 
@@ -89,15 +89,15 @@ TEST(CapturePoses, CapDirectionsCoverTheFrontCap) {
 }
 
 TEST(CapturePoses, PoseMatchesTheRenderCamera) {
-  CameraSpec cs;
+  FovCameraSettings cs;
   cs.width = 40;
   cs.height = 30;
   cs.hfovDeg = 40;
-  cs.pose.eye = Point3(30, 70, 150);
-  cs.pose.lookAt = Point3(1, -2, -5);
-  ThinLensCamera cam(cs);
+  cs.pose.eye = Point3d(30, 70, 150);
+  cs.pose.lookAt = Point3d(1, -2, -5);
+  FovCameraModel cam(cs);
   DatasetFrame f;
-  f.cameraToWorld = lookAtCameraToWorld(glm::dvec3(cs.pose.eye), glm::dvec3(cs.pose.lookAt));
+  f.cameraToWorld = lookAtCameraToWorld(cs.pose.eye, cs.pose.lookAt);
   f.intrinsics.width = 40;
   f.intrinsics.height = 30;
   f.intrinsics.fx = f.intrinsics.fy = 20 / std::tan(20 * M_PI / 180);
@@ -105,7 +105,8 @@ TEST(CapturePoses, PoseMatchesTheRenderCamera) {
   f.intrinsics.cy = 15;
   for (float px : {0.5f, 13.25f, 39.5f})
     for (float py : {0.5f, 21.0f, 29.5f}) {
-      Ray r = cam.generateRay(px, py, Vec2(0.5f));
+      Ray r;
+      cam.generateRay(Vec2(px, py), Vec2(0.5f), 550.0f, r);
       glm::dvec3 o, d;
       frameRay(f, px, py, o, d);
       EXPECT_NEAR(glm::length(glm::dvec3(r.o) - o), 0.0, 1e-4);
@@ -191,7 +192,7 @@ TEST(Capture, BadSettingsWriteNothing) {
   s.views = 2;
   s.minElevationDeg = 80;
   s.maxElevationDeg = 40;
-  EXPECT_EQ(expectInputError([&] { captureScene(*scene, s, out); }).key(), "elevation");
+  EXPECT_EQ(expectInputError([&] { captureScene(*scene, s, out); }).key(), "elevation_deg");
   s.maxElevationDeg = 90;
   s.radiusMm = -5.0;
   EXPECT_EQ(expectInputError([&] { captureScene(*scene, s, out); }).key(), "radius_mm");

@@ -124,11 +124,6 @@ TEST(EiaSynthesis, TriadsRoundTripThroughSdf) {
   }
   EXPECT_LE(maxErr, 1e-6);
   EXPECT_GT(maxV, 0.1);
-  // The paper's wavelengths, parsed from text, work the same way.
-  TriadWavelengths wp = parseTriadWavelengths(disp.panel, "656,566,471");
-  EXPECT_EQ(wp.nm[0], 656.0);
-  expectInputError([&] { (void)parseTriadWavelengths(disp.panel, "656,656.5,471"); });
-  expectInputError([&] { (void)parseTriadWavelengths(disp.panel, "rgb"); });
   std::printf("  triads -> SDF -> detector: max |error| %.3g over %zu values\n", maxErr, area.data.size());
 }
 

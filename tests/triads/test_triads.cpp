@@ -110,6 +110,21 @@ TEST(Triads, WavelengthChoices) {
   expectInputError([&] { triadWavelengths(d.panel, "rgb"); });
 }
 
+// Triad wavelengths from a setting's text: a named choice, or three wavelengths in nm that EIA
+// formation can tell apart; errors name the setting.
+TEST(Triads, WavelengthsFromText) {
+  Display d = loadDisplay(defaultDisplayPath());
+  EXPECT_EQ(parseTriadWavelengths(d.panel, "paper").nm, paperTriadWavelengths().nm);
+  TriadWavelengths w = parseTriadWavelengths(d.panel, "656, 566.25 ,471");
+  EXPECT_EQ(w.nm, (std::array<double, 3>{656.0, 566.25, 471.0}));
+  EXPECT_EQ(w.source, "given (656/566.2/471 nm)");  // written into SDF descriptions
+  for (const char* bad : {"rgb", "656,656.5,471", "656,566", "656,566,471,", "656,566,471,500", "656,x,471",
+                          "350,566,471", "656,566,900"})
+    EXPECT_EQ(expectInputError([&] { (void)parseTriadWavelengths(d.panel, bad); }).key(), "triad_wavelengths") << bad;
+  EXPECT_EQ(expectInputError([&] { (void)parseTriadWavelengths(d.panel, "1,2,3", "run.json: triads"); }).key(),
+            "run.json: triads");
+}
+
 TEST(Triads, SdfFileSizeAndRoundTrip) {
   EiLayout L = computeLayout(smallDisplay(5, 3, 25, EiLayoutKind::Parallel, 3.3));
   RaySet rays = generatePinholeRays(L);

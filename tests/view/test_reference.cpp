@@ -1,6 +1,7 @@
 // The reference view: a scene point at a known display-frame position (through the placement
 // and the display pose) lands on the pixel the camera model predicts; a uniform D65 field is a
-// white furnace; determinism.
+// white furnace; determinism; the images of the reference renderer before it became a call of
+// the field renderer, bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 
 #include "core/parallel.h"
 #include "core/transform.h"
+#include "render/probe_field.h"
 #include "spectral/cie.h"
 #include "synthesis/placement.h"
 #include "view/display_pose.h"
@@ -139,4 +141,35 @@ TEST(ReferenceRenderer, BitIdenticalOnOneAndTwoThreads) {
   }
   ASSERT_EQ(one.data.size(), two.data.size());
   EXPECT_EQ(std::memcmp(one.data.data(), two.data.data(), one.data.size() * sizeof(float)), 0);
+}
+
+// The images of the reference renderer before it became the field renderer with its own sampler
+// and film (its own loop in view/reference_renderer.cpp), hashed bit for bit: a pinhole and a
+// thin lens with natural vignetting and a dispersive pinhole (one ray per wavelength, packets
+// the field terminates), a spectral and an RGB field, through a placement.
+TEST(ReferenceRenderer, SameImagesAsBeforeTheRenderersWereUnified) {
+  using namespace inim::render_test;
+  const uint64_t expected[2][3] = {{0xee3d3ff8c3432c4bull, 0xa3a850238d7ec7b1ull, 0x41ecfbc58163acc1ull},
+                                   {0x4a2f30f358104ecdull, 0x9b445e5ec0971b1bull, 0xc21bff50a238d704ull}};
+  const uint64_t hits[3] = {0, 92, 0};
+  const ViewingPose pose{{10.0, 5.0, 250.0}, {0.0, 1.0, -2.0}, {0.0, 1.0, 0.0}};
+  const SensorGeometry sensor{19, 11, 0.05};
+  const Transform place = Transform::translate(Vec3d(1.0, -2.0, 3.0)) * Transform::scale(Vec3d(1.5));
+  for (int rgb = 0; rgb < 2; ++rgb)
+    for (int cam = 0; cam < 3; ++cam) {
+      ProbeField f(rgb ? FieldEncoding::RGB : FieldEncoding::Spectral, true);
+      std::unique_ptr<CameraModel> m;
+      if (cam == 0) m = std::make_unique<PinholeCameraModel>(sensor, pose, 20.0, true);
+      if (cam == 1) m = std::make_unique<ThinLensCameraModel>(sensor, pose, 20.0, 2.8, 240.0, true);
+      if (cam == 2) m = std::make_unique<PrismPinhole>(sensor, pose);
+      ReferenceSettings s;
+      s.spp = 6;
+      s.seed = 5;
+      s.progress = false;
+      s.raysPerBatch = 29;
+      ViewResult r = renderReference(f, place, *m, defaultCamera().sensor, s);
+      EXPECT_EQ(hashImage(r.image), expected[rgb][cam]) << (rgb ? "RGB " : "spectral ") << m->describe();
+      EXPECT_EQ(r.stats.tracedRays, 19u * 11u * 6u * (cam == 2 ? 4u : 1u));
+      EXPECT_EQ(r.stats.emittingRays, hits[cam]);
+    }
 }

@@ -14,7 +14,7 @@ class BakedSpectrum {
  public:
   BakedSpectrum() = default;  // zero everywhere
   explicit BakedSpectrum(float c) : c_(c) {}
-  // Bakes s(lambda) * scale. Constant spectra stay constant (exact).
+  // Bakes s(lambda) * scale. Constant spectra (Spectrum::constantValue) stay constant (exact).
   explicit BakedSpectrum(const Spectrum& s, float scale = 1.0f);
 
   bool isConstant() const { return table_.empty(); }

@@ -1,4 +1,4 @@
-#include "scene/baked_spectrum.h"
+#include "spectral/baked_spectrum.h"
 
 #include <algorithm>
 
@@ -7,8 +7,8 @@
 namespace inim {
 
 BakedSpectrum::BakedSpectrum(const Spectrum& s, float scale) {
-  if (auto* c = dynamic_cast<const ConstantSpectrum*>(&s)) {
-    c_ = (*c)(550.0f) * scale;
+  if (const std::optional<float> c = s.constantValue()) {
+    c_ = *c * scale;
     return;
   }
   int n = int(kLambdaMax - kLambdaMin) + 1;
