@@ -107,21 +107,28 @@ struct SmallDisplay {
   double viewingDistanceMm = 300.0;
   // Panel margin around the EIA, which also leaves room for toed-in EIs: 3 px (square) or
   // 4 px (hex) when not given.
-  std::optional<int> borderPx;
+  std::optional<int> borderPx = std::nullopt;
 };
 
 namespace detail {
+// The EI grid, lens pitch and viewing distance, as every builder below sets them.
+inline void setEiGrid(Display& d, int cols, int rows, int eiPx, EiLayoutKind layout, double lensPitchMm,
+                      double viewingDistanceMm) {
+  d.mla.pitchMm = lensPitchMm;
+  d.eiWidthPx = d.eiHeightPx = eiPx;
+  d.eiCols = cols;
+  d.eiRows = rows;
+  d.layout = layout;
+  d.viewingDistanceMm = viewingDistanceMm;
+}
+
 inline Display smallDisplayOnDefaultPanel(const SmallDisplay& s, const std::string& file) {
   Display d = loadDisplay(defaultDisplayPath());
   d.file = file;
   d.panel.pixelPitchMm = s.pixelMm;
-  d.mla.pitchMm = s.lensPitchMm > 0.0 ? s.lensPitchMm : s.eiPx * s.pixelMm;
   d.generationGapMm = d.reconstructionGapMm = s.gapMm;
-  d.eiWidthPx = d.eiHeightPx = s.eiPx;
-  d.eiCols = s.cols;
-  d.eiRows = s.rows;
-  d.layout = s.layout;
-  d.viewingDistanceMm = s.viewingDistanceMm;
+  setEiGrid(d, s.cols, s.rows, s.eiPx, s.layout, s.lensPitchMm > 0.0 ? s.lensPitchMm : s.eiPx * s.pixelMm,
+            s.viewingDistanceMm);
   return d;
 }
 }  // namespace detail
@@ -154,20 +161,15 @@ struct PaperVariant {
   int cols = 153, rows = 65;  // EIs
   int eiPx = 25;
   EiLayoutKind layout = EiLayoutKind::Parallel;
-  std::optional<double> gapMm;  // generation and reconstruction gap; default 3.3 and 4.0 mm
+  std::optional<double> gapMm = std::nullopt;  // generation and reconstruction gap; default 3.3 and 4.0 mm
   double lensPitchMm = 1.0;
   double viewingDistanceMm = 350.0;
 };
 
 inline Display paperDisplay(const PaperVariant& v = {}) {
   Display d = loadDisplay(defaultDisplayPath());
-  d.mla.pitchMm = v.lensPitchMm;
   if (v.gapMm) d.generationGapMm = d.reconstructionGapMm = *v.gapMm;
-  d.eiWidthPx = d.eiHeightPx = v.eiPx;
-  d.eiCols = v.cols;
-  d.eiRows = v.rows;
-  d.layout = v.layout;
-  d.viewingDistanceMm = v.viewingDistanceMm;
+  detail::setEiGrid(d, v.cols, v.rows, v.eiPx, v.layout, v.lensPitchMm, v.viewingDistanceMm);
   return d;
 }
 

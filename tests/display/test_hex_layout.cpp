@@ -201,13 +201,9 @@ TEST(HexLayout, RayOrderIsConsistent) {
 // lens centres; EIs that would overlap are an input error.
 TEST(HexLayout, ToedIn) {
   const double g = 3.0, D = 150.0, P = 1.0;
-  Display d = hexDisplay({.cols = 7,
-                          .rows = 5,
-                          .eiPx = 9,
-                          .gapMm = g,
-                          .layout = EiLayoutKind::ToedIn,
-                          .lensPitchMm = P,
-                          .viewingDistanceMm = D});
+  fixtures::SmallDisplay toedIn{
+      .cols = 7, .rows = 5, .eiPx = 9, .gapMm = g, .layout = EiLayoutKind::ToedIn, .lensPitchMm = P, .viewingDistanceMm = D};
+  Display d = hexDisplay(toedIn);
   EiLayout L = computeLayout(d);
   const double m = 1.0 + g / D;
   for (int k = 0; k < 7; ++k)
@@ -226,13 +222,8 @@ TEST(HexLayout, ToedIn) {
       EXPECT_LE(std::max(dx, 0.5 * dx + 0.5 * s3 * dy), 0.45 + 1e-9);
     }
   // 12 px EIs do not fit a 1.02 mm = 10.2 px pitch.
-  Display bad = hexDisplay({.cols = 7,
-                            .rows = 5,
-                            .eiPx = 12,
-                            .gapMm = g,
-                            .layout = EiLayoutKind::ToedIn,
-                            .lensPitchMm = P,
-                            .viewingDistanceMm = D});
+  toedIn.eiPx = 12;
+  Display bad = hexDisplay(toedIn);
   EXPECT_EQ(expectInputError([&] { (void)computeLayout(bad); }).key(), "viewing_distance_mm");
 }
 

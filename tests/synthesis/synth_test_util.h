@@ -2,6 +2,7 @@
 // Shared helpers for the synthesis tests: analytic mock fields (so these tests do not depend on
 // the Embree scene), the point-image check, and the fixtures (small displays, scratch files).
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <string>
@@ -153,6 +154,25 @@ inline std::pair<int, int> brightestMatchesPrediction(const EiLayout& L, const I
       if (best > 0.0f && arg == eiaPixel(L, *pred)) ++ok;
     }
   return {seen, ok};
+}
+
+// A small soft emitter at (0.23, -0.17, z), its sigma a pixel's footprint at z (so the ray
+// nearest its centre is the brightest), synthesized with the VCP at 50 mm: in every EI that
+// sees it (12 at least), the brightest pixel is the one pinhole geometry predicts (in 95 % of
+// them at least), and its rays are real for z > 0, virtual for z < 0. Returns the synthesis.
+inline SynthesisResult expectPointImageOnPredictedPixels(const EiLayout& L, const Panel& panel, double z) {
+  const Point3d p(0.23, -0.17, z);
+  const double footprint = L.pixelMm * std::abs(z) / L.gapMm;
+  const MockField f({{p, 3.0 * footprint, Vec3(0.3f), footprint, nullptr}}, FieldEncoding::RGB);
+  SynthesisResult r = synthesizeEia(L, panel, f, quietSettings(50.0));
+  const auto [seen, ok] = brightestMatchesPrediction(L, r.eia, p);
+  EXPECT_GE(seen, 12) << "too few EIs see the point";
+  EXPECT_GE(ok, int(std::ceil(0.95 * seen))) << ok << " of " << seen << " EIs at z = " << z;
+  EXPECT_EQ(r.stats.realRays > 0, z > 0);
+  EXPECT_EQ(r.stats.virtualRays > 0, z < 0);
+  std::printf("  %sz = %+.0f mm (%s): brightest pixel = predicted in %d of %d EIs\n", L.isHex() ? "hex, " : "", z,
+              layoutName(L.kind), ok, seen);
+  return r;
 }
 
 }  // namespace synth_test

@@ -13,12 +13,6 @@ using namespace synth_test;
 
 namespace {
 
-SynthesisSettings plainSettings() {
-  SynthesisSettings s = quietSettings(40.0);
-  s.spp = 1;
-  return s;
-}
-
 MockField softEmitter() {
   return MockField({{{0.2, -0.1, 5.0}, 2.0, Vec3(0.7f, 0.4f, 0.2f), 1.2, nullptr}}, FieldEncoding::RGB);
 }
@@ -37,7 +31,8 @@ TEST(EiaSynthesis, PrecomputedDisplayRaysReplacePinholeRays) {
   Display disp = squareDisplay({.cols = 7, .rows = 5, .eiPx = 9});
   EiLayout L = computeLayout(disp);
   MockField f = softEmitter();
-  SynthesisSettings s = plainSettings();
+  SynthesisSettings s = quietSettings(40.0);
+  s.spp = 1;
   SynthesisResult ref = synthesizeEia(L, disp.panel, f, s);
 
   RaySet pin = generatePinholeRays(L);

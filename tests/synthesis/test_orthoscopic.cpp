@@ -126,20 +126,8 @@ TEST_P(PointImage, LandsOnPredictedPixel) {
   auto [z, kind] = GetParam();
   Display disp = squareDisplay(
       {.cols = 11, .rows = 9, .eiPx = 9, .layout = kind, .lensPitchMm = kind == EiLayoutKind::LensGrid ? 0.95 : 0.0});
-  EiLayout L = computeLayout(disp);
-  const Point3d p(0.23, -0.17, z);
-  // Soft emitter: the ray nearest the centre is the brightest. sigma ~ a pixel's footprint.
-  const double footprint = L.pixelMm * std::abs(z) / L.gapMm;
-  MockField f({{p, 3.0 * footprint, Vec3(0.3f), footprint, nullptr}}, FieldEncoding::RGB);
-  SynthesisSettings s = quietSettings(50.0);
-  SynthesisResult r = synthesizeEia(L, disp.panel, f, s);
-  auto [seen, ok] = brightestMatchesPrediction(L, r.eia, p);
-  EXPECT_GE(seen, 12) << "too few EIs see the point";
-  EXPECT_GE(ok, int(std::ceil(0.95 * seen))) << ok << " of " << seen << " EIs at z = " << z;
-  EXPECT_EQ(r.stats.realRays > 0, z > 0);
-  EXPECT_EQ(r.stats.virtualRays > 0, z < 0);
+  const SynthesisResult r = expectPointImageOnPredictedPixels(computeLayout(disp), disp.panel, z);
   EXPECT_EQ(r.stats.gamut.outOfGamut, 0u);
-  std::printf("  z = %+.0f mm (%s): brightest pixel = predicted in %d of %d EIs\n", z, layoutName(kind), ok, seen);
 }
 
 INSTANTIATE_TEST_SUITE_P(RealAndVirtual, PointImage,
