@@ -2,20 +2,20 @@
 // PSNR of a known uniform error, SSIM identities, the flat-image luminance term and a
 // per-window reference, CIEDE2000 of a uniform shift, percentiles, and masks.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <random>
 
 #include "analysis/metrics.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "fixtures.h"
 #include "spectral/color.h"
 
-namespace fs = std::filesystem;
 using namespace inim;
+using fixtures::expectInputError;
+using fixtures::scratchPath;
 
 namespace {
 
@@ -371,64 +371,48 @@ TEST(Mask, FromAlphaOrSingleChannel) {
   EXPECT_FALSE(m.counts(3, 2));
   EXPECT_TRUE(m.counts(3, 3));
   Image rgb = testImage(8, 6, 71);
-  try {
-    maskFromImage(rgb, "rgb.png");
-    FAIL() << "an RGB image without alpha is not a mask";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("rgb.png"), std::string::npos);
-  }
+  // An RGB image without alpha is not a mask.
+  EXPECT_NE(std::string(expectInputError([&] { maskFromImage(rgb, "rgb.png"); }).what()).find("rgb.png"),
+            std::string::npos);
   Image zero(8, 6, {"Y"});
   PixelMask none = maskFromImage(zero, "zero.png");
   EXPECT_THROW(compareImages(rgb, rgb, {}, &none), InputError);
   Image small(4, 6, {"Y"});
   PixelMask wrong = maskFromImage(small, "small.png");
-  try {
-    compareImages(rgb, rgb, {}, &wrong);
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("small.png"), std::string::npos);
-  }
+  EXPECT_NE(std::string(expectInputError([&] { compareImages(rgb, rgb, {}, &wrong); }).what()).find("small.png"),
+            std::string::npos);
 }
 
 // ---------------------------------------------------------------------------------------
 // Bad input, files, determinism
 
 TEST(Compare, SizeMismatchNamesBothImages) {
-  try {
-    compareImages(testImage(10, 10, 1), testImage(12, 10, 1), {}, nullptr, "ref.exr", "rec.exr");
-    FAIL();
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("ref.exr"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("rec.exr"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("10 x 10"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("12 x 10"), std::string::npos) << msg;
-  }
+  const std::string msg = expectInputError([] {
+                            compareImages(testImage(10, 10, 1), testImage(12, 10, 1), {}, nullptr, "ref.exr", "rec.exr");
+                          }).what();
+  EXPECT_NE(msg.find("ref.exr"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("rec.exr"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("10 x 10"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("12 x 10"), std::string::npos) << msg;
 }
 
 TEST(Compare, FilesNaNAndMissing) {
-  const fs::path dir = fs::temp_directory_path() / ("inim_test_metrics_" + std::to_string(getpid()));
-  fs::create_directories(dir);
+  const std::string aFile = scratchPath("a.exr"), nanFile = scratchPath("nan.exr");
   Image a = testImage(16, 16, 81);
-  writeImage(a, (dir / "a.exr").string());
+  writeImage(a, aFile);
   Image n = a;
   n.at(3, 4, 1) = std::numeric_limits<float>::quiet_NaN();
-  writeImage(n, (dir / "nan.exr").string());
-  ImageMetrics same = compareImageFiles((dir / "a.exr").string(), (dir / "a.exr").string());
+  writeImage(n, nanFile);
+  ImageMetrics same = compareImageFiles(aFile, aFile);
   EXPECT_TRUE(std::isinf(same.psnrDb));
   EXPECT_EQ(same.ssim, 1.0);
   EXPECT_EQ(same.deltaE.mean, 0.0);
-  try {
-    compareImageFiles((dir / "a.exr").string(), (dir / "nan.exr").string());
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("nan.exr"), std::string::npos);
-    EXPECT_NE(std::string(e.what()).find("NaN"), std::string::npos);
-  }
-  EXPECT_THROW(compareImageFiles((dir / "a.exr").string(), (dir / "missing.exr").string()), InputError);
+  const std::string nanMessage = expectInputError([&] { compareImageFiles(aFile, nanFile); }).what();
+  EXPECT_NE(nanMessage.find("nan.exr"), std::string::npos);
+  EXPECT_NE(nanMessage.find("NaN"), std::string::npos);
+  expectInputError([&] { compareImageFiles(aFile, scratchPath("missing.exr")); });
   EXPECT_EQ(defaultColorSpaceForFile("x/y.EXR"), "lin_rec709");
   EXPECT_EQ(defaultColorSpaceForFile("x/y.png"), "srgb");
-  fs::remove_all(dir);
 }
 
 TEST(Compare, EncodedValuesOfSrgbImagesAreTheStoredValues) {

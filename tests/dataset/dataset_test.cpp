@@ -11,58 +11,13 @@
 #include "dataset/middlebury.h"
 #include "dataset/scene_box.h"
 #include "dataset_test_util.h"
-#include "expect_input_error.h"
-#include "scratch_dir.h"
+#include "fixtures.h"
 
 using namespace inim;
 using namespace dataset_test;
+using fixtures::expectInputError;
 using nlohmann::json;
 namespace fs = std::filesystem;
-
-namespace {
-
-ScratchDir& scratch() {
-  static ScratchDir s("dataset");
-  return s;
-}
-
-// A fresh dataset folder `name` inside the scratch folder.
-std::string folder(const std::string& name) {
-  std::string d = scratch().path(name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-// n cameras on a ring of radius 4 at height 1, looking at the origin.
-std::vector<glm::dmat4> ringPoses(int n) {
-  std::vector<glm::dmat4> poses;
-  for (int i = 0; i < n; ++i) {
-    double a = 2 * M_PI * i / n;
-    poses.push_back(lookAtC2W({4 * std::cos(a), 1.0, 4 * std::sin(a)}, {0, 0, 0}));
-  }
-  return poses;
-}
-
-// A Blender-style dataset: camera_angle_x, paths without extension, RGBA images.
-std::string blenderDataset(const std::string& name, int n, int size, std::vector<float> rgba,
-                           const std::string& jsonName = "transforms_train.json") {
-  std::string d = folder(name);
-  fs::create_directories(d + "/train");
-  json j;
-  j["camera_angle_x"] = 0.6911112070083618;
-  auto poses = ringPoses(n);
-  for (int i = 0; i < n; ++i) {
-    std::string stem = "train/r_" + std::to_string(i);
-    writePng(d + "/" + stem + ".png", size, size, rgba);
-    j["frames"].push_back({{"file_path", "./" + stem}, {"rotation", 0.0125},
-                           {"transform_matrix", matrixJson(poses[i])}});
-  }
-  writeText(d + "/" + jsonName, j.dump(2));
-  return d;
-}
-
-}  // namespace
 
 TEST(Dataset, BlenderVariant) {
   std::string d = blenderDataset("blender", 3, 8, {1.0f, 0.0f, 0.0f, 0.6f});
@@ -111,7 +66,7 @@ TEST(Dataset, NerfstudioVariantWithPerFrameOverrides) {
   }
   j["frames"][1]["fl_x"] = 20.0;  // per-frame overrides global
   j["frames"][1]["k1"] = 0.0;
-  writeText(d + "/transforms.json", j.dump());
+  writeBytes(d + "/transforms.json", j.dump());
   Dataset ds = loadDataset(d);
   EXPECT_EQ(ds.format, "nerfstudio");
   ASSERT_EQ(ds.frames.size(), 2u);
@@ -129,16 +84,16 @@ TEST(Dataset, NerfstudioVariantWithPerFrameOverrides) {
 
   // PINHOLE ignores distortion; other models are rejected.
   j["camera_model"] = "PINHOLE";
-  writeText(d + "/transforms.json", j.dump());
+  writeBytes(d + "/transforms.json", j.dump());
   EXPECT_EQ(loadDataset(d).frames[0].intrinsics.k1, 0.0);
   j["camera_model"] = "OPENCV_FISHEYE";
-  writeText(d + "/transforms.json", j.dump());
+  writeBytes(d + "/transforms.json", j.dump());
   InputError e = expectInputError([&] { loadDataset(d); });
   EXPECT_EQ(e.key(), "camera_model");
   EXPECT_EQ(e.value(), "OPENCV_FISHEYE");
   j["camera_model"] = "OPENCV";
   j["k3"] = 0.2;
-  writeText(d + "/transforms.json", j.dump());
+  writeBytes(d + "/transforms.json", j.dump());
   EXPECT_EQ(expectInputError([&] { loadDataset(d); }).key(), "k3");
 }
 
@@ -152,7 +107,7 @@ TEST(Dataset, InstantNgpVariantRecordsItsBox) {
     j["frames"].push_back({{"file_path", "f" + std::to_string(i) + ".jpg"},  // .jpg absent: try .png
                            {"transform_matrix", matrixJson(poses[i])}});
   }
-  writeText(d + "/transforms.json", j.dump());
+  writeBytes(d + "/transforms.json", j.dump());
   Dataset ds = loadDataset(d + "/transforms.json");
   EXPECT_EQ(ds.format, "instant-ngp");
   ASSERT_TRUE(ds.ngpBox.has_value());
@@ -211,7 +166,7 @@ TEST(Dataset, DownscaleAveragesAndScalesIntrinsics) {
   out->close();
   json j = {{"fl_x", 8.0}, {"cx", 4.0}, {"cy", 2.0}, {"w", 8}, {"h", 4}};
   j["frames"].push_back({{"file_path", "a.png"}, {"transform_matrix", matrixJson(ringPoses(1)[0])}});
-  writeText(d + "/transforms.json", j.dump());
+  writeBytes(d + "/transforms.json", j.dump());
   DatasetOptions o;
   o.downscale = 2;
   Dataset ds = loadDataset(d, o);
@@ -234,7 +189,7 @@ TEST(Dataset, DownscaleAveragesAndScalesIntrinsics) {
   EXPECT_NEAR(small.at(1, 1, 2), 0.25f, 1e-5);
   // The size check is made at full resolution.
   j["w"] = 4;
-  writeText(d + "/transforms.json", j.dump());
+  writeBytes(d + "/transforms.json", j.dump());
   EXPECT_NE(expectInputError([&] { loadDataset(d, o); }).key().find("(w, h)"), std::string::npos);
 }
 
@@ -246,11 +201,11 @@ TEST(Dataset, BadInputNamesFileKeyAndValue) {
   // Non-finite pose (a literal too large for a double parses as inf).
   json j = good;
   j["frames"][1]["transform_matrix"][0][3] = "NaN";
-  writeText(file, j.dump());
+  writeBytes(file, j.dump());
   InputError e = expectInputError([&] { loadDataset(d); });
   EXPECT_EQ(e.file(), file);
   EXPECT_EQ(e.key(), "frames[1].transform_matrix");
-  writeText(file, good.dump().replace(good.dump().find("\"transform_matrix\":[[") + 21, 1, "1e999,"));
+  writeBytes(file, good.dump().replace(good.dump().find("\"transform_matrix\":[[") + 21, 1, "1e999,"));
   e = expectInputError([&] { loadDataset(d); });
   EXPECT_EQ(e.file(), file);
   EXPECT_NE(e.expected().find("finite"), std::string::npos) << e.what();
@@ -259,7 +214,7 @@ TEST(Dataset, BadInputNamesFileKeyAndValue) {
   j = good;
   j["w"] = 5;
   j["h"] = 4;
-  writeText(file, j.dump());
+  writeBytes(file, j.dump());
   e = expectInputError([&] { loadDataset(d); });
   EXPECT_EQ(e.value(), "5x4");
   EXPECT_NE(e.expected().find("4x4"), std::string::npos);
@@ -267,12 +222,12 @@ TEST(Dataset, BadInputNamesFileKeyAndValue) {
   // Missing intrinsics.
   j = good;
   j.erase("camera_angle_x");
-  writeText(file, j.dump());
+  writeBytes(file, j.dump());
   e = expectInputError([&] { loadDataset(d); });
   EXPECT_EQ(e.key(), "frames[0].fl_x");
 
   // Malformed JSON.
-  writeText(file, "{\"frames\": [");
+  writeBytes(file, "{\"frames\": [");
   e = expectInputError([&] { loadDataset(d); });
   EXPECT_EQ(e.file(), file);
 
@@ -280,15 +235,15 @@ TEST(Dataset, BadInputNamesFileKeyAndValue) {
   j = good;
   j["frames"][0]["file_path"] = "nowhere/a";
   j["frames"][1]["file_path"] = "nowhere/b";
-  writeText(file, j.dump());
+  writeBytes(file, j.dump());
   e = expectInputError([&] { loadDataset(d); });
   EXPECT_EQ(e.key(), "frames");
   j["frames"] = json::array();
-  writeText(file, j.dump());
+  writeBytes(file, j.dump());
   expectInputError([&] { loadDataset(d); });
 
   // Bad options and paths.
-  writeText(file, good.dump());
+  writeBytes(file, good.dump());
   DatasetOptions o;
   o.downscale = 0;
   EXPECT_EQ(expectInputError([&] { loadDataset(d, o); }).key(), "downscale");
@@ -322,7 +277,7 @@ TEST(Dataset, MiddleburyConversion) {
     std::snprintf(buf, sizeof buf, " %.17g", t[c]);
     line += buf;
   }
-  writeText(d + "/test_par.txt", "1\n" + line + "\n");
+  writeBytes(d + "/test_par.txt", "1\n" + line + "\n");
   writePng(d + "/img0.png", 640, 480, {0, 0, 0});
   Dataset ds = loadDataset(d);
   EXPECT_EQ(ds.format, "middlebury");
@@ -346,7 +301,7 @@ TEST(Dataset, MiddleburyConversion) {
     EXPECT_GT(glm::dot(toX, dir), 0.0);
   }
   // A malformed line names it.
-  writeText(d + "/test_par.txt", "1\nimg0.png 1 2 3\n");
+  writeBytes(d + "/test_par.txt", "1\nimg0.png 1 2 3\n");
   EXPECT_EQ(expectInputError([&] { loadDataset(d); }).key(), "line 2");
 }
 

@@ -1,8 +1,10 @@
 #pragma once
-// Helpers for the dataset tests: tiny images and dataset files written into a scratch folder.
+// Helpers for the dataset and fitting tests: tiny images and dataset files written into the
+// scratch folder (fixtures.h).
 #include <OpenImageIO/imageio.h>
 
-#include <fstream>
+#include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -10,7 +12,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "fixtures.h"
+
 namespace dataset_test {
+
+using fixtures::writeBytes;
 
 // Writes an 8-bit PNG with `channels` (3 or 4) channels, every pixel `value` (straight alpha).
 inline void writePng(const std::string& path, int w, int h, std::vector<float> value) {
@@ -39,8 +45,41 @@ inline nlohmann::json matrixJson(const glm::dmat4& m) {
   return rows;
 }
 
-inline void writeText(const std::string& path, const std::string& text) {
-  std::ofstream(path) << text;
+// A fresh, empty dataset folder `name` inside the scratch folder.
+inline std::string folder(const std::string& name) {
+  const std::string d = fixtures::scratchPath(name);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+// n cameras on a ring of radius 4 at height 1, looking at the origin.
+inline std::vector<glm::dmat4> ringPoses(int n) {
+  std::vector<glm::dmat4> poses;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n;
+    poses.push_back(lookAtC2W({4 * std::cos(a), 1.0, 4 * std::sin(a)}, {0, 0, 0}));
+  }
+  return poses;
+}
+
+// A Blender-style dataset in folder `name`: camera_angle_x, paths without extension, n
+// size x size images of one colour (RGB or straight RGBA) on ringPoses(n). Returns the folder.
+inline std::string blenderDataset(const std::string& name, int n, int size, const std::vector<float>& rgba,
+                                  const std::string& jsonName = "transforms_train.json") {
+  const std::string d = folder(name);
+  std::filesystem::create_directories(d + "/train");
+  nlohmann::json j;
+  j["camera_angle_x"] = 0.6911112070083618;
+  const auto poses = ringPoses(n);
+  for (int i = 0; i < n; ++i) {
+    const std::string stem = "train/r_" + std::to_string(i);
+    writePng(d + "/" + stem + ".png", size, size, rgba);
+    j["frames"].push_back({{"file_path", "./" + stem}, {"rotation", 0.0125},
+                           {"transform_matrix", matrixJson(poses[size_t(i)])}});
+  }
+  writeBytes(d + "/" + jsonName, j.dump(2));
+  return d;
 }
 
 }  // namespace dataset_test

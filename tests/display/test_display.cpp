@@ -1,38 +1,21 @@
 // Display catalog, EI layouts and derived paraxial quantities.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
 #include "core/error.h"
-#include "expect_input_error.h"
 #include "core/output_file.h"
 #include "display/display.h"
 #include "display/display_info.h"
 #include "display/ei_layout.h"
+#include "fixtures.h"
 
-#include "scratch_dir.h"
-
-namespace fs = std::filesystem;
 using namespace inim;
+using namespace fixtures;
 
 namespace {
 
-ScratchDir scratchFolder("test_display");
-fs::path scratchDir() { return scratchFolder.dir(); }
-
 constexpr double kPiD = 3.14159265358979323846;
-
-// A scratch folder for JSON files written by the tests.
-std::string scratch(const std::string& name, const std::string& text) {
-  fs::path dir = scratchDir();
-  fs::create_directories(dir);
-  fs::path p = dir / name;
-  std::ofstream(p) << text;
-  return p.string();
-}
 
 // The paper prototype with some keys replaced (a JSON patch on the top-level object).
 std::string prototypeWith(const std::string& name, const Json& patch) {
@@ -45,9 +28,8 @@ std::string prototypeWith(const std::string& name, const Json& patch) {
     else
       j[it.key()] = it.value();
   }
-  return scratch(name, j.dump(2));
+  return scratchFile(name, j.dump(2));
 }
-
 
 }  // namespace
 
@@ -86,12 +68,14 @@ TEST(DisplayCatalog, PrimarySpectrumIsTheDocumentedGaussian) {
 }
 
 TEST(DisplayCatalog, CsvPrimaryAndDiamondLayout) {
-  std::string csv = scratch("red.csv", "# measured red primary (test)\nwavelength_nm,relative_power\n600,0.1\n610,0.6\n622,1.0\n630,0.7\n650,0.05\n");
+  std::string csv = scratchFile("red.csv",
+                                "# measured red primary (test)\nwavelength_nm,relative_power\n"
+                                "600,0.1\n610,0.6\n622,1.0\n630,0.7\n650,0.05\n");
   Json p = readJsonFile(dataPath("optics/panels/sony-xperia-1-ii.json"));
   p["primaries"]["R"] = {{"csv", {{"file", "red.csv"}, {"column", "relative_power"}}}, {"scale", 0.9}};
   p["subpixel_layout"] = {{"type", "diamond"}};
   p["eotf"] = {{"gamma", 2.4}};
-  Panel panel = loadPanel(scratch("csv_panel.json", p.dump()));
+  Panel panel = loadPanel(scratchFile("csv_panel.json", p.dump()));
   EXPECT_EQ(panel.primaries[0].kind, PrimarySpec::Kind::Csv);
   EXPECT_EQ(panel.primaries[0].csvPath, csv);
   EXPECT_DOUBLE_EQ(primaryPeakNm(panel.primaries[0]), 622.0);
@@ -101,7 +85,7 @@ TEST(DisplayCatalog, CsvPrimaryAndDiamondLayout) {
   EXPECT_EQ(panel.eotf.name(), "gamma 2.4");
   // Unknown keys inside a primary are errors naming the key path.
   p["primaries"]["G"]["gaussian"]["peak_nm"] = 530;
-  EXPECT_EQ(expectInputError([&] { loadPanel(scratch("bad_primary.json", p.dump())); }).key(),
+  EXPECT_EQ(expectInputError([&] { loadPanel(scratchFile("bad_primary.json", p.dump())); }).key(),
             "primaries.G.gaussian.peak_nm");
 }
 
@@ -130,19 +114,19 @@ TEST(DisplayCatalog, SubpixelLayouts) {
       {"channel": "R", "polygon": [[0, 0], [0.3, 0], [0.3, 1]]},
       {"channel": "G", "polygon": [[0.35, 0], [0.65, 0], [0.65, 1], [0.35, 1]]},
       {"channel": "B", "polygon": [[0.7, 0], [1, 0], [1, 1], [0.7, 1]]}]})");
-  Panel panel = loadPanel(scratch("custom_panel.json", p.dump()));
+  Panel panel = loadPanel(scratchFile("custom_panel.json", p.dump()));
   EXPECT_EQ(panel.subpixels.type, "custom");
   EXPECT_NEAR(panel.subpixels.emittingArea(0), 0.15, 1e-12);
 
   p["subpixel_layout"]["subpixels"][0]["polygon"] = Json::parse("[[0, 0], [1.5, 0], [0.3, 1]]");
-  InputError e = expectInputError([&] { loadPanel(scratch("bad_panel.json", p.dump())); });
+  InputError e = expectInputError([&] { loadPanel(scratchFile("bad_panel.json", p.dump())); });
   EXPECT_EQ(e.key(), "subpixel_layout.subpixels[0].polygon");
 }
 
 TEST(DisplayCatalog, FocalLengthFromRadius) {
   Json m = readJsonFile(dataPath("optics/mlas/fresnel-630.json"));
   m.erase("focal_length_mm");
-  Mla mla = loadMla(scratch("mla_r_only.json", m.dump()));
+  Mla mla = loadMla(scratchFile("mla_r_only.json", m.dump()));
   LensletFocus f = lensletFocus(mla);
   ASSERT_TRUE(f.indexD.has_value());
   EXPECT_NEAR(*f.indexD, 1.4906, 5e-4);  // PMMA n_d in spectra/materials.json
@@ -152,11 +136,11 @@ TEST(DisplayCatalog, FocalLengthFromRadius) {
   // Only f given: no catalog needed.
   Json m2 = readJsonFile(dataPath("optics/mlas/fresnel-630.json"));
   m2.erase("radius_of_curvature_mm");
-  EXPECT_DOUBLE_EQ(lensletFocus(loadMla(scratch("mla_f_only.json", m2.dump()))).focalLengthMm, 3.3);
+  EXPECT_DOUBLE_EQ(lensletFocus(loadMla(scratchFile("mla_f_only.json", m2.dump()))).focalLengthMm, 3.3);
 
   // Both given but inconsistent.
   m["focal_length_mm"] = 4.0;
-  Mla bad = loadMla(scratch("mla_bad.json", m.dump()));
+  Mla bad = loadMla(scratchFile("mla_bad.json", m.dump()));
   InputError e = expectInputError([&] { lensletFocus(bad); });
   EXPECT_EQ(e.key(), "focal_length_mm");
   EXPECT_NE(std::string(e.what()).find("mla_bad.json"), std::string::npos);
@@ -342,4 +326,27 @@ TEST(DisplayInfo, CoverGlassShortensTheOpticalGap) {
   EXPECT_NEAR(*r.reconstruction.opticalReferencePlaneMm, ge * 3.3 / (ge - 3.3), 1e-2);
   d.panel.coverGlass.reset();
   EXPECT_FALSE(derive(d).reconstruction.opticalGapMm.has_value());
+}
+
+// The command-line tests' small display file (fixtures.h) loads as the display it describes:
+// 11 x 9 EIs of 9 px of 0.1 mm, centred on a panel 3 px larger on each side; a panel smaller
+// than the EIA is refused.
+TEST(DisplayCatalog, SmallDisplayFileLoadsAsDescribed) {
+  const Display d = loadDisplay(scratchFile("small.json", smallDisplayJson({.cols = 11, .rows = 9, .eiPx = 9})));
+  EXPECT_EQ(d.panel.widthPx, 11 * 9 + 6);
+  EXPECT_EQ(d.panel.heightPx, 9 * 9 + 6);
+  EXPECT_DOUBLE_EQ(d.panel.pixelPitchMm, 0.1);
+  EXPECT_DOUBLE_EQ(d.panel.primaries[1].meanNm, 530.0);
+  EXPECT_DOUBLE_EQ(d.mla.pitchMm, 0.9);
+  EXPECT_DOUBLE_EQ(lensletFocus(d.mla).focalLengthMm, 3.0);
+  EXPECT_DOUBLE_EQ(d.generationGapMm, 3.0);
+  EXPECT_DOUBLE_EQ(d.reconstructionGapMm, 3.5);
+  const EiLayout L = computeLayout(d);
+  EXPECT_EQ(L.eiaW, 99);
+  EXPECT_EQ(L.eiaH, 81);
+  EXPECT_EQ(L.panelCol0, 3);
+  EXPECT_EQ(L.panelRow0, 3);
+  const std::string tooSmall = scratchFile(
+      "too_small.json", smallDisplayJson({.cols = 11, .rows = 9, .eiPx = 9, .panelWidthPx = 60, .panelHeightPx = 60}));
+  EXPECT_EQ(expectInputError([&] { loadDisplay(tooSmall); }).key(), "ei_count");
 }

@@ -11,13 +11,21 @@
 #include "display/display.h"
 #include "display/display_info.h"
 #include "display/ei_layout.h"
-#include "display/hex_test_util.h"
-#include "expect_input_error.h"
+#include "fixtures.h"
 
 using namespace inim;
-using namespace hex_test;
+using fixtures::expectInputError;
+using fixtures::hexDisplay;
 
 namespace {
+
+// Site (EI centre) of EI (k, l) recomputed from first principles: the hex lattice of pitch a
+// (rows a sqrt(3)/2 apart, odd rows shifted by a/2) centred on the origin.
+void expectedSite(int K, int R, double a, int k, int l, double& x, double& y) {
+  const double xc = 0.5 * (K - 1) + (R > 1 ? 0.25 : 0.0), yc = 0.5 * (R - 1);
+  x = (k - xc + ((l & 1) ? 0.5 : 0.0)) * a;
+  y = (yc - l) * a * std::sqrt(3.0) / 2.0;
+}
 
 // Brute force over every EI: for each EIA pixel, the nearest EI centre and its distance, and
 // the second-nearest distance (ties).
@@ -45,7 +53,7 @@ Nearest nearestSite(const EiLayout& L, double a, double x, double y) {
 // inside, i.e. farther than the cell's inradius from every EI centre's hexagon) are in none.
 TEST(HexLayout, EveryPixelBelongsToTheNearestEiCentre) {
   for (auto [K, R, n] : {std::tuple{7, 5, 9}, std::tuple{6, 4, 10}, std::tuple{5, 6, 12}, std::tuple{1, 1, 7}}) {
-    Display d = hexDisplay(K, R, n);
+    Display d = hexDisplay({.cols = K, .rows = R, .eiPx = n});
     EiLayout L = computeLayout(d);
     ASSERT_TRUE(L.isHex());
     const double a = n * L.pixelMm, s3 = std::sqrt(3.0);
@@ -86,7 +94,7 @@ TEST(HexLayout, EveryPixelBelongsToTheNearestEiCentre) {
 
 // Odd rows are shifted right by half a pitch, as RealMla's lattice; the layout is centred.
 TEST(HexLayout, LatticeMatchesRealMlaConvention) {
-  Display d = hexDisplay(8, 6, 10, 0.1, 3.0, EiLayoutKind::LensGrid, 1.05);
+  Display d = hexDisplay({.cols = 8, .rows = 6, .eiPx = 10, .layout = EiLayoutKind::LensGrid, .lensPitchMm = 1.05});
   EiLayout L = computeLayout(d);
   const double P = 1.05;
   for (int k = 0; k < 8; ++k)
@@ -111,7 +119,7 @@ TEST(HexLayout, LatticeMatchesRealMlaConvention) {
 TEST(HexLayout, EiCountAndSizeMatchAreaRatio) {
   for (int n : {9, 12, 25}) {
     const int K = 15, R = 13;
-    Display d = hexDisplay(K, R, n, 0.05);
+    Display d = hexDisplay({.cols = K, .rows = R, .eiPx = n, .pixelMm = 0.05});
     EiLayout L = computeLayout(d);
     const double cellPx = n * n * std::sqrt(3.0) / 2.0;
     const double mean = double(L.numRays()) / double(L.numEis());
@@ -162,7 +170,7 @@ TEST(HexLayout, ShippedHexExampleFitsThePanel) {
 // Ray order: EIs by column then row from the bottom, each EI's pixels by box column then row
 // from the bottom; rayIndex / rayAddress / eiAtPixel agree; each EI's rays are contiguous.
 TEST(HexLayout, RayOrderIsConsistent) {
-  Display d = hexDisplay(6, 5, 10);
+  Display d = hexDisplay({.cols = 6, .rows = 5, .eiPx = 10});
   EiLayout L = computeLayout(d);
   std::set<int64_t> pixels;
   int64_t expected = 0;
@@ -193,7 +201,9 @@ TEST(HexLayout, RayOrderIsConsistent) {
 // lens centres; EIs that would overlap are an input error.
 TEST(HexLayout, ToedIn) {
   const double g = 3.0, D = 150.0, P = 1.0;
-  Display d = hexDisplay(7, 5, 9, 0.1, g, EiLayoutKind::ToedIn, P, D);
+  fixtures::SmallDisplay toedIn{
+      .cols = 7, .rows = 5, .eiPx = 9, .gapMm = g, .layout = EiLayoutKind::ToedIn, .lensPitchMm = P, .viewingDistanceMm = D};
+  Display d = hexDisplay(toedIn);
   EiLayout L = computeLayout(d);
   const double m = 1.0 + g / D;
   for (int k = 0; k < 7; ++k)
@@ -212,7 +222,8 @@ TEST(HexLayout, ToedIn) {
       EXPECT_LE(std::max(dx, 0.5 * dx + 0.5 * s3 * dy), 0.45 + 1e-9);
     }
   // 12 px EIs do not fit a 1.02 mm = 10.2 px pitch.
-  Display bad = hexDisplay(7, 5, 12, 0.1, g, EiLayoutKind::ToedIn, P, D);
+  toedIn.eiPx = 12;
+  Display bad = hexDisplay(toedIn);
   EXPECT_EQ(expectInputError([&] { (void)computeLayout(bad); }).key(), "viewing_distance_mm");
 }
 

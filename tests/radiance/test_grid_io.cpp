@@ -3,17 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 
 #include "core/rng.h"
-#include "expect_input_error.h"
+#include "fixtures.h"
 #include "radiance/grid_io.h"
 #include "radiance/volume_renderer.h"
-#include "scratch_dir.h"
 
 using namespace inim;
+using namespace fixtures;
 
 namespace {
 
@@ -25,14 +22,6 @@ VoxelGrid sampleGrid() {
   for (float& d : g.density) d = -3.0f + 6.0f * rng.uniform();
   for (float& c : g.color) c = -2.0f + 4.0f * rng.uniform();
   return g;
-}
-
-std::string readAll(const std::string& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-void writeAll(const std::string& p, const std::string& s) {
-  std::ofstream(p, std::ios::binary | std::ios::trunc).write(s.data(), std::streamsize(s.size()));
 }
 
 }  // namespace
@@ -77,10 +66,10 @@ TEST(GridIo, RejectsForeignTruncatedCorruptAndNewerFiles) {
   ScratchDir dir("radiance_io_bad");
   std::string good = dir.path("good.inimrf");
   saveVoxelGrid(sampleGrid(), good);
-  std::string bytes = readAll(good);
+  std::string bytes = readBytes(good);
   auto expectHeaderError = [&](const std::string& content, const std::string& name) {
     std::string p = dir.path(name);
-    writeAll(p, content);
+    writeBytes(p, content);
     InputError e = expectInputError([&] { loadVoxelGrid(p); });
     EXPECT_EQ(e.file(), p);
     EXPECT_EQ(e.key(), "header");

@@ -4,16 +4,20 @@
 
 #include <cmath>
 
-#include "display/hex_test_util.h"
+#include "fixtures.h"
 #include "rays/pinhole_rays.h"
 #include "rays/ray_set.h"
 
 using namespace inim;
-using namespace hex_test;
+using fixtures::hexDisplay;
 
 TEST(HexRays, PinholeRaysRunFromPixelThroughPinhole) {
   for (EiLayoutKind kind : {EiLayoutKind::Parallel, EiLayoutKind::ToedIn, EiLayoutKind::LensGrid}) {
-    Display d = hexDisplay(7, 6, 9, 0.1, 3.0, kind, kind == EiLayoutKind::Parallel ? 0.0 : 0.92, 100.0);
+    Display d = hexDisplay({.cols = 7,
+                            .rows = 6,
+                            .layout = kind,
+                            .lensPitchMm = kind == EiLayoutKind::Parallel ? 0.0 : 0.92,
+                            .viewingDistanceMm = 100.0});
     EiLayout L = computeLayout(d);
     RaySet rays = generatePinholeRays(L);
     ASSERT_EQ(int64_t(rays.size()), L.numRays());
@@ -51,7 +55,7 @@ TEST(HexRays, PinholeRaysRunFromPixelThroughPinhole) {
 // the EI, predictPixelForPoint names the pixel holding that landing point, and that pixel's
 // own ray passes within half a pixel's footprint of the point.
 TEST(HexRays, PredictedPixelRaysPassThroughThePoint) {
-  Display d = hexDisplay(11, 9, 9, 0.1, 3.0);
+  Display d = hexDisplay({.cols = 11, .rows = 9});
   EiLayout L = computeLayout(d);
   for (double z : {12.0, -12.0, 30.0}) {
     const Point3d p(0.23, -0.17, z);

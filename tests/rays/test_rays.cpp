@@ -1,6 +1,5 @@
 // Pinhole display rays, the ray-index mapping, and the Zemax text / inim binary ray files.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -10,51 +9,18 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "expect_input_error.h"
 #include "core/parallel.h"
 #include "display/display.h"
+#include "fixtures.h"
 #include "rays/pinhole_rays.h"
 #include "rays/ray_binary.h"
 #include "rays/zemax_ray_text.h"
 
-#include "scratch_dir.h"
-
 namespace fs = std::filesystem;
 using namespace inim;
+using namespace fixtures;
 
 namespace {
-
-ScratchDir scratchFolder("test_rays");
-
-std::string scratchPath(const std::string& name) { return scratchFolder.path(name); }
-
-std::string readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// A display built in code: K x R EIs of n x n pixels of 0.0395 mm.
-Display smallDisplay(int K, int R, int n, EiLayoutKind layout, double gap, double lensPitch = 1.0,
-                     double viewingDistance = 350.0) {
-  Display d;
-  d.name = "test";
-  d.file = "(test)";
-  d.panel.widthPx = 4000;
-  d.panel.heightPx = 2000;
-  d.panel.pixelPitchMm = 0.0395;
-  d.mla.pitchMm = lensPitch;
-  d.mla.focalLengthMm = gap;
-  d.generationGapMm = d.reconstructionGapMm = gap;
-  d.eiWidthPx = d.eiHeightPx = n;
-  d.eiCols = K;
-  d.eiRows = R;
-  d.layout = layout;
-  d.viewingDistanceMm = viewingDistance;
-  return d;
-}
-
 
 std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> r;
@@ -70,7 +36,7 @@ std::vector<std::string> lines(const std::string& text) {
 // bottom-left pixel (x = y = -12 px = -0.474 mm), whose chief ray through the pinhole leans
 // up and right. Ray order: x outer, y inner, both increasing.
 TEST(PinholeRays, CornerDirectionMatchesThePaperMacro) {
-  EiLayout L = computeLayout(smallDisplay(1, 1, 25, EiLayoutKind::Parallel, 3.0));
+  EiLayout L = computeLayout(paperDisplay({.cols = 1, .rows = 1, .gapMm = 3.0}));
   std::string path = scratchPath("one_ei.txt");
   writeZemaxEiRayText(path, L, 0, 0);
   auto ls = lines(readBytes(path));
@@ -97,7 +63,13 @@ TEST(PinholeRays, CornerDirectionMatchesThePaperMacro) {
 
 TEST(PinholeRays, IndexMappingRoundTrips) {
   for (EiLayoutKind kind : {EiLayoutKind::Parallel, EiLayoutKind::ToedIn}) {
-    EiLayout L = computeLayout(smallDisplay(7, 4, 5, kind, 3.3, 0.25, 30.0));
+    EiLayout L = computeLayout(paperDisplay({.cols = 7,
+                                             .rows = 4,
+                                             .eiPx = 5,
+                                             .layout = kind,
+                                             .gapMm = 3.3,
+                                             .lensPitchMm = 0.25,
+                                             .viewingDistanceMm = 30.0}));
     int64_t mapped = 0;
     std::vector<int> hits(size_t(L.eiaW) * L.eiaH, 0);
     for (int64_t r = 0; r < L.numRays(); ++r) {
@@ -125,7 +97,7 @@ TEST(PinholeRays, IndexMappingRoundTrips) {
       EXPECT_GT(int64_t(L.eiaW) * L.eiaH, L.numRays());  // gaps
     }
   }
-  EiLayout L = computeLayout(smallDisplay(3, 2, 4, EiLayoutKind::Parallel, 3.0));
+  EiLayout L = computeLayout(paperDisplay({.cols = 3, .rows = 2, .eiPx = 4, .gapMm = 3.0}));
   // EI order: k outer, EI rows from the bottom; pixels: i outer, rows from the bottom.
   EXPECT_EQ(rayAddress(L, 1), (RayAddress{0, 1, 0, 2}));
   EXPECT_EQ(rayAddress(L, 4), (RayAddress{0, 1, 1, 3}));
@@ -135,7 +107,7 @@ TEST(PinholeRays, IndexMappingRoundTrips) {
 
 TEST(PinholeRays, RaysRunFromPixelCentresThroughPinholes) {
   for (EiLayoutKind kind : {EiLayoutKind::Parallel, EiLayoutKind::ToedIn, EiLayoutKind::LensGrid}) {
-    EiLayout L = computeLayout(smallDisplay(9, 5, 25, kind, 3.3));
+    EiLayout L = computeLayout(paperDisplay({.cols = 9, .rows = 5, .layout = kind, .gapMm = 3.3}));
     RaySet rays = generatePinholeRays(L);
     ASSERT_EQ(int64_t(rays.size()), L.numRays());
     for (int64_t r = 0; r < L.numRays(); r += 7) {
@@ -257,7 +229,7 @@ TEST(ZemaxRayText, WriteReadRoundTrip) {
 }
 
 TEST(ZemaxRayText, ReadsUtf16WithBomCrlfAndHeaderLines) {
-  EiLayout L = computeLayout(smallDisplay(2, 2, 5, EiLayoutKind::Parallel, 3.0));
+  EiLayout L = computeLayout(paperDisplay({.cols = 2, .rows = 2, .eiPx = 5, .gapMm = 3.0}));
   RaySet rays = generatePinholeRays(L);
   // As the macro writes: UTF-16LE, BOM, CRLF, two header lines (one with a non-ASCII char).
   std::string text = "Ray data \xB5m: x, y, z, l, m, n\r\nNumber of rays: 100\r\n";
@@ -304,7 +276,7 @@ TEST(ZemaxRayText, BadFilesAreInputErrors) {
 }
 
 TEST(RayBinary, RoundTripIsExactAndBadFilesFail) {
-  EiLayout L = computeLayout(smallDisplay(6, 3, 25, EiLayoutKind::ToedIn, 3.3));
+  EiLayout L = computeLayout(paperDisplay({.cols = 6, .rows = 3, .layout = EiLayoutKind::ToedIn, .gapMm = 3.3}));
   RaySet rays = generatePinholeRays(L);
   std::string p = scratchPath("rays.irays");
   writeRayBinary(p, rays, RayBinaryInfo::fromLayout(L));
@@ -331,7 +303,13 @@ TEST(RayBinary, RoundTripIsExactAndBadFilesFail) {
 }
 
 TEST(PinholeRays, DriveValuesFromAndToTheEia) {
-  EiLayout L = computeLayout(smallDisplay(8, 5, 6, EiLayoutKind::ToedIn, 3.3, 0.25, 40.0));
+  EiLayout L = computeLayout(paperDisplay({.cols = 8,
+                                           .rows = 5,
+                                           .eiPx = 6,
+                                           .layout = EiLayoutKind::ToedIn,
+                                           .gapMm = 3.3,
+                                           .lensPitchMm = 0.25,
+                                           .viewingDistanceMm = 40.0}));
   Image eia(L.eiaW, L.eiaH, {"R", "G", "B"});
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);

@@ -1,55 +1,29 @@
 #pragma once
-// Shared helpers for the synthesis tests: small displays and analytic mock fields (so these
-// tests do not depend on the Embree scene).
-#include <unistd.h>
-
+// Shared helpers for the synthesis tests: analytic mock fields (so these tests do not depend on
+// the Embree scene), the point-image check, and the fixtures (small displays, scratch files).
 #include <cmath>
-#include <filesystem>
+#include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
-#include "expect_input_error.h"
+#include "core/image.h"
 #include "core/rng.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
 #include "field/field.h"
+#include "fixtures.h"
+#include "rays/pinhole_rays.h"
 #include "spectral/spectrum.h"
+#include "synthesis/eia_synthesis.h"
 
 namespace synth_test {
 
 using namespace inim;
-namespace fs = std::filesystem;
-
-inline fs::path scratchDir() {
-  return fs::temp_directory_path() / ("inim_test_synthesis_" + std::to_string(getpid()));
-}
-inline std::string scratchPath(const std::string& name) {
-  fs::path dir = scratchDir();
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
-
-// A small display on the default panel's primaries: K x R EIs of n x n pixels of `pixelMm`,
-// on a panel `border` px larger than the EIA on each side.
-inline Display smallDisplay(int K = 9, int R = 7, int n = 9, double pixelMm = 0.1, double gap = 3.0,
-                            EiLayoutKind layout = EiLayoutKind::Parallel, double lensPitch = 0.0,
-                            double viewingDistance = 300.0, int border = 3) {
-  Display d = loadDisplay(defaultDisplayPath());
-  d.file = "small-test-display";
-  d.panel.pixelPitchMm = pixelMm;
-  d.panel.widthPx = K * (n + 2) + 2 * border;  // room for toed-in EIs
-  d.panel.heightPx = R * (n + 2) + 2 * border;
-  d.mla.pitchMm = lensPitch > 0.0 ? lensPitch : n * pixelMm;
-  d.generationGapMm = d.reconstructionGapMm = gap;
-  d.eiWidthPx = d.eiHeightPx = n;
-  d.eiCols = K;
-  d.eiRows = R;
-  d.layout = layout;
-  d.viewingDistanceMm = viewingDistance;
-  return d;
-}
+using namespace fixtures;
 
 // Spheres in the field frame. Each is either a uniform emitter or a "soft" one whose radiance
 // falls off as exp(-b^2 / sigma^2) with the ray's distance b from the centre (so the ray
@@ -151,5 +125,54 @@ SpectrumPtr makeSpectrum(F f) {
   return std::make_shared<FnSpectrum<F>>(f);
 }
 
+// Synthesis settings without the progress bar.
+inline SynthesisSettings quietSettings(double vcpMm = SynthesisSettings{}.vcpMm) {
+  SynthesisSettings s;
+  s.progress = false;
+  s.vcpMm = vcpMm;
+  return s;
+}
+
+inline float brightness(const Image& img, int x, int y) { return img.at(x, y, 0) + img.at(x, y, 1) + img.at(x, y, 2); }
+
+// A point's image in a panel-sized EIA: for every EI that pinhole geometry says sees `p`,
+// whether the EI's brightest pixel is the predicted one (ties: the first in ray order).
+// Returns {EIs that see p, EIs whose brightest pixel is the predicted one}.
+inline std::pair<int, int> brightestMatchesPrediction(const EiLayout& L, const Image& eia, const Point3d& p) {
+  int seen = 0, ok = 0;
+  for (int k = 0; k < L.eiCols; ++k)
+    for (int l = 0; l < L.eiRows; ++l) {
+      const auto pred = predictPixelForPoint(L, k, l, p);
+      if (!pred) continue;
+      ++seen;
+      float best = -1.0f;
+      PixelCoord arg{};
+      L.forEachRayOfEi(k, l, [&](int64_t, int col, int row, int, int) {
+        const float b = brightness(eia, L.panelCol0 + col, L.panelRow0 + row);
+        if (b > best) best = b, arg = {col, row};
+      });
+      if (best > 0.0f && arg == eiaPixel(L, *pred)) ++ok;
+    }
+  return {seen, ok};
+}
+
+// A small soft emitter at (0.23, -0.17, z), its sigma a pixel's footprint at z (so the ray
+// nearest its centre is the brightest), synthesized with the VCP at 50 mm: in every EI that
+// sees it (12 at least), the brightest pixel is the one pinhole geometry predicts (in 95 % of
+// them at least), and its rays are real for z > 0, virtual for z < 0. Returns the synthesis.
+inline SynthesisResult expectPointImageOnPredictedPixels(const EiLayout& L, const Panel& panel, double z) {
+  const Point3d p(0.23, -0.17, z);
+  const double footprint = L.pixelMm * std::abs(z) / L.gapMm;
+  const MockField f({{p, 3.0 * footprint, Vec3(0.3f), footprint, nullptr}}, FieldEncoding::RGB);
+  SynthesisResult r = synthesizeEia(L, panel, f, quietSettings(50.0));
+  const auto [seen, ok] = brightestMatchesPrediction(L, r.eia, p);
+  EXPECT_GE(seen, 12) << "too few EIs see the point";
+  EXPECT_GE(ok, int(std::ceil(0.95 * seen))) << ok << " of " << seen << " EIs at z = " << z;
+  EXPECT_EQ(r.stats.realRays > 0, z > 0);
+  EXPECT_EQ(r.stats.virtualRays > 0, z < 0);
+  std::printf("  %sz = %+.0f mm (%s): brightest pixel = predicted in %d of %d EIs\n", L.isHex() ? "hex, " : "", z,
+              layoutName(L.kind), ok, seen);
+  return r;
+}
 
 }  // namespace synth_test

@@ -13,14 +13,6 @@ using namespace synth_test;
 
 namespace {
 
-SynthesisSettings plainSettings() {
-  SynthesisSettings s;
-  s.progress = false;
-  s.vcpMm = 40.0;
-  s.spp = 1;
-  return s;
-}
-
 MockField softEmitter() {
   return MockField({{{0.2, -0.1, 5.0}, 2.0, Vec3(0.7f, 0.4f, 0.2f), 1.2, nullptr}}, FieldEncoding::RGB);
 }
@@ -36,10 +28,11 @@ double maxAbsDiff(const std::vector<float>& a, const std::vector<float>& b) {
 // The pinhole rays passed in explicitly give the synthesis' own result (up to their float
 // storage); other rays give another EIA; a ray set of the wrong size is an input error.
 TEST(EiaSynthesis, PrecomputedDisplayRaysReplacePinholeRays) {
-  Display disp = smallDisplay(7, 5, 9);
+  Display disp = squareDisplay({.cols = 7, .rows = 5, .eiPx = 9});
   EiLayout L = computeLayout(disp);
   MockField f = softEmitter();
-  SynthesisSettings s = plainSettings();
+  SynthesisSettings s = quietSettings(40.0);
+  s.spp = 1;
   SynthesisResult ref = synthesizeEia(L, disp.panel, f, s);
 
   RaySet pin = generatePinholeRays(L);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 
 #include "core/parallel.h"
 #include "rays/pinhole_rays.h"
@@ -26,9 +27,7 @@ MockField twoEmitters() {
 }
 
 SynthesisSettings settings() {
-  SynthesisSettings s;
-  s.progress = false;
-  s.vcpMm = 40.0;
+  SynthesisSettings s = quietSettings(40.0);
   s.spp = 2;
   s.aovs = true;
   return s;
@@ -37,7 +36,7 @@ SynthesisSettings settings() {
 }  // namespace
 
 TEST(EiaSynthesis, CoversThePanelWithEisCentred) {
-  Display disp = smallDisplay(9, 7, 9);
+  Display disp = squareDisplay({.cols = 9, .rows = 7, .eiPx = 9});
   EiLayout L = computeLayout(disp);
   MockField f = twoEmitters();
   SynthesisResult r = synthesizeEia(L, disp.panel, f, settings());
@@ -75,7 +74,7 @@ TEST(EiaSynthesis, CoversThePanelWithEisCentred) {
 }
 
 TEST(EiaSynthesis, BitIdenticalOnOneAndTwoThreads) {
-  Display disp = smallDisplay(9, 7, 9);
+  Display disp = squareDisplay({.cols = 9, .rows = 7, .eiPx = 9});
   EiLayout L = computeLayout(disp);
   MockField f = twoEmitters();
   SynthesisSettings s = settings();
@@ -104,7 +103,7 @@ TEST(EiaSynthesis, BitIdenticalOnOneAndTwoThreads) {
 
 // Triads export of a synthesized EIA, traced back onto the panel plane, reproduces it.
 TEST(EiaSynthesis, TriadsRoundTripThroughSdf) {
-  Display disp = smallDisplay(9, 7, 9);
+  Display disp = squareDisplay({.cols = 9, .rows = 7, .eiPx = 9});
   EiLayout L = computeLayout(disp);
   MockField f = twoEmitters();
   SynthesisResult r = synthesizeEia(L, disp.panel, f, settings());
@@ -113,7 +112,7 @@ TEST(EiaSynthesis, TriadsRoundTripThroughSdf) {
   std::string sdf = scratchPath("eia.sdf");
   uint64_t n = writeTriadSdf(sdf, rays, r.drive, w);
   EXPECT_EQ(n, 3u * uint64_t(L.numRays()));
-  EXPECT_EQ(fs::file_size(sdf), kSdfHeaderSize + kSdfRaySize * n);
+  EXPECT_EQ(std::filesystem::file_size(sdf), kSdfHeaderSize + kSdfRaySize * n);
   EiaFormation formed = formEiaFromSdf(L, sdf, w);
   EXPECT_EQ(formed.binned, n);
   Image area = eiaArea(L, r.eia);
@@ -128,11 +127,10 @@ TEST(EiaSynthesis, TriadsRoundTripThroughSdf) {
 }
 
 TEST(EiaSynthesis, AutoExposureMapsPercentileToWhite) {
-  Display disp = smallDisplay(5, 5, 7);
+  Display disp = squareDisplay({.cols = 5, .rows = 5, .eiPx = 7});
   EiLayout L = computeLayout(disp);
   MockField f({{{0.0, 0.0, -1010.0}, 1000.0, Vec3(7.0f), 0.0, nullptr}}, FieldEncoding::RGB);
-  SynthesisSettings s;
-  s.progress = false;
+  SynthesisSettings s = quietSettings();
   s.autoExposure = true;
   SynthesisResult r = synthesizeEia(L, disp.panel, f, s);
   // The brightest channel of a uniform field reaches full drive.
@@ -150,7 +148,7 @@ TEST(EiaSynthesis, AutoExposureMapsPercentileToWhite) {
 }
 
 TEST(EiaSynthesis, PreviewShowsRealVirtualAndMlaCrossing) {
-  Display disp = smallDisplay(15, 9, 9);
+  Display disp = squareDisplay({.cols = 15, .rows = 9, .eiPx = 9});
   EiLayout L = computeLayout(disp);
   // A real sphere, a virtual sphere, and a large sphere whose surface crosses the MLA plane.
   MockField f({{{-5.5, 0.0, 5.0}, 1.0, Vec3(1.0f), 0.0, nullptr},
@@ -176,5 +174,5 @@ TEST(EiaSynthesis, PreviewShowsRealVirtualAndMlaCrossing) {
   EXPECT_GT(dark, 100);
   std::string png = scratchPath("preview.png");
   writeImage(p.image, png);
-  EXPECT_GT(fs::file_size(png), 1000u);
+  EXPECT_GT(std::filesystem::file_size(png), 1000u);
 }

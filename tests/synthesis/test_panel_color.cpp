@@ -98,15 +98,14 @@ TEST(PanelColor, GamutMappingClipAndDesaturate) {
 // emitting exactly the red primary's spectrum gives drive values proportional to (1, 0, 0);
 // the panel white gives (1, 1, 1) x exposure.
 TEST(PanelColor, SynthesisOfPrimaryAndWhiteSpectra) {
-  Display disp = smallDisplay(3, 3, 7);
+  Display disp = squareDisplay({.cols = 3, .rows = 3, .eiPx = 7});
   EiLayout L = computeLayout(disp);
   PanelColor pc(disp.panel);
   std::array<SpectrumPtr, 3> prim;
   for (int c = 0; c < 3; ++c) prim[size_t(c)] = primarySpectrum(disp.panel.primaries[size_t(c)]);
   double Yw = 0.0;
   for (auto& s : prim) Yw += spectrumToXYZ(*s).y;
-  SynthesisSettings s;
-  s.progress = false;
+  SynthesisSettings s = quietSettings();
   s.spp = 64;
   s.exposure = 0.5;
   for (int c = 0; c < 3; ++c) {
@@ -140,7 +139,7 @@ TEST(PanelColor, SynthesisOfPrimaryAndWhiteSpectra) {
 // primaries: every pixel is counted as out of gamut (a negative channel), and desaturation
 // keeps its luminance.
 TEST(PanelColor, SpectralColourOutsideGamutIsCounted) {
-  Display disp = smallDisplay(3, 3, 7);
+  Display disp = squareDisplay({.cols = 3, .rows = 3, .eiPx = 7});
   EiLayout L = computeLayout(disp);
   PanelColor pc(disp.panel);
   auto line = makeSpectrum([](float l) { return float(std::exp(-0.5 * std::pow((l - 495.0) / 4.0, 2))); });
@@ -148,8 +147,7 @@ TEST(PanelColor, SpectralColourOutsideGamutIsCounted) {
   ASSERT_LT(std::min({exact.x, exact.y, exact.z}), -0.05 * std::max({exact.x, exact.y, exact.z}));
   const double Y = spectrumToXYZ(*line).y;
   MockField f = everywhere(makeSpectrum([line, Y](float l) { return float((*line)(l) * 0.1 / Y); }));
-  SynthesisSettings s;
-  s.progress = false;
+  SynthesisSettings s = quietSettings();
   s.spp = 16;
   SynthesisResult r = synthesizeEia(L, disp.panel, f, s);
   EXPECT_EQ(r.stats.gamut.pixels, uint64_t(L.numRays()));
@@ -169,12 +167,11 @@ TEST(PanelColor, SpectralColourOutsideGamutIsCounted) {
 // RGB fields go through OCIO: linear Rec.709 white at Y = 0.5 gives the same drive values as
 // a spectral field with D65's XYZ at Y = 0.5.
 TEST(PanelColor, RgbFieldThroughOcio) {
-  Display disp = smallDisplay(3, 3, 5);
+  Display disp = squareDisplay({.cols = 3, .rows = 3, .eiPx = 5});
   EiLayout L = computeLayout(disp);
   PanelColor pc(disp.panel);
   MockField f({{{0.0, 0.0, -1010.0}, 1000.0, Vec3(0.5f), 0.0, nullptr}}, FieldEncoding::RGB);
-  SynthesisSettings s;
-  s.progress = false;
+  SynthesisSettings s = quietSettings();
   SynthesisResult r = synthesizeEia(L, disp.panel, f, s);
   Vec3d xyz = Vec3d(ColorSystem::rec709ToXYZ() * Vec3(0.5f));
   Vec3d expected = pc.driveFromXYZ(xyz);

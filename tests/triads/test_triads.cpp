@@ -1,50 +1,24 @@
 // Triads, the Zemax SDF source file, and EIA formation on a detector at the panel plane.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <sstream>
 
 #include "core/error.h"
-#include "expect_input_error.h"
 #include "display/display.h"
+#include "fixtures.h"
 #include "rays/pinhole_rays.h"
 #include "triads/sdf.h"
 #include "triads/triads.h"
 
-#include "scratch_dir.h"
-
 namespace fs = std::filesystem;
 using namespace inim;
+using namespace fixtures;
 
 namespace {
-
-ScratchDir scratchFolder("test_triads");
-
-std::string scratchPath(const std::string& name) { return scratchFolder.path(name); }
-
-std::string readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Display smallDisplay(int K, int R, int n, EiLayoutKind layout, double gap, double lensPitch = 1.0) {
-  Display d = loadDisplay(defaultDisplayPath());
-  d.mla.pitchMm = lensPitch;
-  d.generationGapMm = d.reconstructionGapMm = gap;
-  d.eiWidthPx = d.eiHeightPx = n;
-  d.eiCols = K;
-  d.eiRows = R;
-  d.layout = layout;
-  d.viewingDistanceMm = 300.0;
-  return d;
-}
 
 // A random EIA (zero outside the EIs) and its per-ray drive values.
 std::pair<Image, std::vector<float>> randomEia(const EiLayout& L, unsigned seed) {
@@ -57,7 +31,6 @@ std::pair<Image, std::vector<float>> randomEia(const EiLayout& L, unsigned seed)
         for (int c = 0; c < 3; ++c) eia.at(x, y, c) = u(rng);
   return {eia, driveFromEia(L, eia)};
 }
-
 
 int32_t i32At(const unsigned char* b, size_t off) {
   return int32_t(uint32_t(b[off]) | uint32_t(b[off + 1]) << 8 | uint32_t(b[off + 2]) << 16 | uint32_t(b[off + 3]) << 24);
@@ -126,7 +99,7 @@ TEST(Triads, WavelengthsFromText) {
 }
 
 TEST(Triads, SdfFileSizeAndRoundTrip) {
-  EiLayout L = computeLayout(smallDisplay(5, 3, 25, EiLayoutKind::Parallel, 3.3));
+  EiLayout L = computeLayout(paperDisplay({.cols = 5, .rows = 3, .gapMm = 3.3}));
   RaySet rays = generatePinholeRays(L);
   auto [eia, drive] = randomEia(L, 7);
   TriadWavelengths w = paperTriadWavelengths();
@@ -169,7 +142,7 @@ TEST(Triads, SdfFileSizeAndRoundTrip) {
 }
 
 TEST(Triads, BadSdfFilesAreInputErrors) {
-  EiLayout L = computeLayout(smallDisplay(2, 2, 5, EiLayoutKind::Parallel, 3.3));
+  EiLayout L = computeLayout(paperDisplay({.cols = 2, .rows = 2, .eiPx = 5, .gapMm = 3.3}));
   RaySet rays = generatePinholeRays(L);
   std::vector<float> drive(rays.size() * 3, 0.25f);
   std::string good = scratchPath("good.sdf");
@@ -205,7 +178,8 @@ TEST(Triads, BadSdfFilesAreInputErrors) {
 // Triads traced straight back to the panel plane rebuild the EIA they were made from.
 TEST(Triads, EiaFormationEqualsDirectAssignment) {
   for (EiLayoutKind kind : {EiLayoutKind::Parallel, EiLayoutKind::ToedIn, EiLayoutKind::LensGrid}) {
-    EiLayout L = computeLayout(smallDisplay(11, 6, 25, kind, 3.3));
+    EiLayout L =
+        computeLayout(paperDisplay({.cols = 11, .rows = 6, .layout = kind, .gapMm = 3.3, .viewingDistanceMm = 300.0}));
     RaySet rays = generatePinholeRays(L);
     auto [eia, drive] = randomEia(L, 11);
     TriadWavelengths w = triadWavelengths(loadDisplay(defaultDisplayPath()).panel);
@@ -219,7 +193,7 @@ TEST(Triads, EiaFormationEqualsDirectAssignment) {
     EXPECT_LE(worst, 1e-6f) << layoutName(kind);
   }
   // Wrong wavelengths are counted, not binned.
-  EiLayout L = computeLayout(smallDisplay(2, 2, 5, EiLayoutKind::Parallel, 3.3));
+  EiLayout L = computeLayout(paperDisplay({.cols = 2, .rows = 2, .eiPx = 5, .gapMm = 3.3}));
   RaySet rays = generatePinholeRays(L);
   std::vector<float> drive(rays.size() * 3, 1.0f);
   EiaFormation f = formEia(L, expandTriads(rays, drive, paperTriadWavelengths()),
