@@ -6,15 +6,17 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "cli/scene_options.h"
-#include "core/error.h"
+#include "cli/options.h"
 #include "core/output_file.h"
-#include "core/parallel.h"
+#include "fields/field_factory.h"
 #include "render/renderer.h"
 #include "scene/analytic_scene.h"
 
 namespace inim::cli {
 
+namespace {
+
+// "x,y,z" -> vector; InputError naming the option otherwise.
 Vec3 parseVec3Option(const std::string& text, const std::string& option) {
   Vec3 v;
   char extra = 0;
@@ -23,7 +25,7 @@ Vec3 parseVec3Option(const std::string& text, const std::string& option) {
   return v;
 }
 
-std::string defaultScenePath() { return dataPath("scenes/paper-fig7.json"); }
+}  // namespace
 
 void addRenderCommand(CLI::App& app) {
   struct Opts {
@@ -52,29 +54,24 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--integrator", o->integrator, "direct (default in scenes) or path (NEE + MIS)")
       ->check(CLI::IsMember({"direct", "path"}));
   cmd->add_option("--max-depth", o->maxDepth, "Maximum scattering depth (overrides the scene)");
-  addRunOptions(cmd, o->run);
-
-  cmd->callback([o]() {
+  addRunOptions(cmd, o->run, [o] {
     if (o->spp <= 0) throw InputError("", "--spp", std::to_string(o->spp), "a positive sample count");
     if (std::filesystem::path(o->out).extension() != ".exr")
       throw InputError("", "--out", "\"" + o->out + "\"", "a file name ending in .exr");
     o->cam.pose = {parseVec3Option(o->eye, "--eye"), parseVec3Option(o->lookAt, "--look-at"),
                    parseVec3Option(o->up, "--up")};
     ThinLensCamera camera(o->cam);  // validates sizes and pose before any work
-    ThreadLimit threads(o->run.threads);
 
-    std::string scenePath = o->scene.empty() ? defaultScenePath() : o->scene;
-    LoadedField lf = loadField(scenePath, "--field");
-    auto* scene = dynamic_cast<AnalyticScene*>(lf.field.get());
-    if ((!o->integrator.empty() || o->maxDepth >= 0) && !scene)
-      throw InputError("", o->integrator.empty() ? "--max-depth" : "--integrator", scenePath,
-                       "an analytic scene (a radiance field has no integrator)");
+    LoadedField lf = loadField(o->scene.empty() ? defaultScenePath() : o->scene, "field");
     if (!o->integrator.empty() || o->maxDepth >= 0) {
-      IntegratorSettings is = scene->integratorSettings();
+      if (!lf.analyticScene)
+        throw InputError("", o->integrator.empty() ? "--max-depth" : "--integrator", lf.path,
+                         "an analytic scene (a radiance field has no integrator)");
+      IntegratorSettings is = lf.analyticScene->integratorSettings();
       if (o->integrator == "direct") is.type = IntegratorSettings::Type::Direct;
       if (o->integrator == "path") is.type = IntegratorSettings::Type::Path;
       if (o->maxDepth >= 0) is.maxDepth = o->maxDepth;
-      scene->setIntegratorSettings(is);
+      lf.analyticScene->setIntegratorSettings(is);
     }
 
     RenderSettings rs;
@@ -82,14 +79,14 @@ void addRenderCommand(CLI::App& app) {
     rs.seed = o->run.seed;
     RenderResult r = renderField(*lf.field, camera, rs);
 
-    std::string png = std::filesystem::path(o->out).replace_extension(".png").string();
+    const std::string png = std::filesystem::path(o->out).replace_extension(".png").string();
     OutputSet outputs;
     writeImage(r.image, outputs.add(o->out));
     writeImage(encodeSRGB(r.image), outputs.add(png));
     outputs.commit();
     std::printf("rendered %s: %dx%d, %d spp, %.2f s, %.2f Mrays/s (camera rays)\n  wrote %s\n  wrote %s\n",
-                scenePath.c_str(), o->cam.width, o->cam.height, o->spp, r.seconds,
-                r.raysTraced / r.seconds * 1e-6, o->out.c_str(), png.c_str());
+                lf.path.c_str(), o->cam.width, o->cam.height, o->spp, r.seconds, r.raysTraced / r.seconds * 1e-6,
+                o->out.c_str(), png.c_str());
   });
 }
 

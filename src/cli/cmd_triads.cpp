@@ -8,48 +8,18 @@
 #include <memory>
 #include <string>
 
-#include "core/format.h"
 #include "cli/commands.h"
-#include "core/error.h"
+#include "cli/options.h"
+#include "core/format.h"
 #include "core/image.h"
 #include "core/output_file.h"
-#include "core/parallel.h"
 #include "core/progress.h"
-#include "display/display.h"
 #include "rays/pinhole_rays.h"
-#include "synthesis/display_overrides.h"
 #include "synthesis/eia_synthesis.h"
 #include "triads/sdf.h"
 #include "triads/triads.h"
 
-namespace fs = std::filesystem;
-
 namespace inim::cli {
-
-// Registered by main.cpp (declared in commands.h): inim triads export | form.
-void addTriadsCommand(CLI::App& app);
-
-namespace {
-
-struct DisplayOpts {
-  std::string display, layout;
-  double viewingDistanceMm = 0.0;
-  CLI::Option *layoutOpt = nullptr, *distOpt = nullptr;
-  void add(CLI::App* cmd) {
-    cmd->add_option("--display", display, "Display JSON (default: optics/displays/paper-prototype.json)");
-    layoutOpt = cmd->add_option("--layout", layout, "EI layout: parallel, toed-in or lens-grid");
-    distOpt = cmd->add_option("--viewing-distance-mm", viewingDistanceMm, "Viewing distance D for toed-in");
-  }
-  EiLayout load(Display& d) const {
-    d = loadDisplay(displayPathOrDefault(display));
-    LayoutOverride o;
-    if (layoutOpt->count()) o.layout = layout;
-    if (distOpt->count()) o.viewingDistanceMm = viewingDistanceMm;
-    return applyLayoutOverride(d, o);
-  }
-};
-
-}  // namespace
 
 void addTriadsCommand(CLI::App& app) {
   auto* triads = app.add_subcommand("triads", "RGB-wavelength triads: Zemax SDF export and EIA formation");
@@ -57,7 +27,7 @@ void addTriadsCommand(CLI::App& app) {
 
   // inim triads export
   struct ExportOpts {
-    DisplayOpts disp;
+    DisplayArgs disp;
     std::string eia, out, wavelengths = "panel";
     float fluxScale = 1.0f;
     bool skipZero = false, fluxSum = false;
@@ -66,23 +36,20 @@ void addTriadsCommand(CLI::App& app) {
   auto e = std::make_shared<ExportOpts>();
   auto* ex = triads->add_subcommand(
       "export", "EIA (EXR of drive values) -> 3 monochromatic rays per display ray, as a Zemax spectral SDF source file");
-  e->disp.add(ex);
+  addDisplayOptions(ex, e->disp);
   ex->add_option("--eia", e->eia, "EIA EXR (panel or EIA size; the first three channels are R, G, B)")->required();
   ex->add_option("--out", e->out, "Output .sdf")->required();
   ex->add_option("--triad-wavelengths", e->wavelengths, "panel (default), paper, zemax-sequential or R,G,B in nm");
   ex->add_option("--flux-scale", e->fluxScale, "Flux = drive value x this (default 1)");
   ex->add_flag("--skip-zero", e->skipZero, "Leave out triad rays of flux 0 (the paper wrote them all)");
   ex->add_flag("--flux-sum", e->fluxSum, "Header ray-set flux = sum of the ray fluxes (the paper wrote 1)");
-  addRunOptions(ex, e->run);
-  ex->callback([e] {
-    ThreadLimit threads(e->run.threads);
+  addRunOptions(ex, e->run, [e] {
     auto t0 = std::chrono::steady_clock::now();
-    if (lowerExtension(e->out) != ".sdf" && lowerExtension(e->out) != ".dat")
-      throw InputError("", "--out", "\"" + e->out + "\"", "a Zemax source file name (.sdf or .dat)");
+    requireExtension(e->out, "--out", {".sdf", ".dat"}, "a Zemax source file name (.sdf or .dat)");
     if (!(e->fluxScale > 0.0f) || !std::isfinite(e->fluxScale))
       throw InputError("", "--flux-scale", std::to_string(e->fluxScale), "a number > 0");
     Display d;
-    EiLayout L = e->disp.load(d);
+    EiLayout L = loadDisplayLayout(e->disp, d);
     TriadWavelengths w = parseTriadWavelengths(d.panel, e->wavelengths);
     Image img = readImage(e->eia);
     Image area = eiaArea(L, img, e->eia);
@@ -106,7 +73,7 @@ void addTriadsCommand(CLI::App& app) {
 
   // inim triads form
   struct FormOpts {
-    DisplayOpts disp;
+    DisplayArgs disp;
     std::string sdf, out, png, wavelengths = "panel";
     double gapMm = 0.0;
     CLI::Option* gapOpt = nullptr;
@@ -116,27 +83,20 @@ void addTriadsCommand(CLI::App& app) {
   auto* fo = triads->add_subcommand(
       "form", "Zemax SDF triads -> EIA: straight propagation to a detector at the panel plane z = -g, flux binned per "
               "pixel and channel");
-  f->disp.add(fo);
+  addDisplayOptions(fo, f->disp);
   fo->add_option("--sdf", f->sdf, "Zemax spectral source file (.sdf)")->required();
   fo->add_option("--out", f->out, "Output EXR (panel resolution, channels R, G, B: summed flux)")->required();
   fo->add_option("--png", f->png, "Also an encoded PNG (the panel's EOTF)");
   fo->add_option("--triad-wavelengths", f->wavelengths,
                  "Channels of the wavelengths: panel (default), paper, zemax-sequential or R,G,B in nm");
   f->gapOpt = fo->add_option("--gap-mm", f->gapMm, "Detector at z = -G (default: the display's generation gap)");
-  addRunOptions(fo, f->run);
-  fo->callback([f] {
-    ThreadLimit threads(f->run.threads);
+  addRunOptions(fo, f->run, [f] {
     auto t0 = std::chrono::steady_clock::now();
-    if (lowerExtension(f->out) != ".exr") throw InputError("", "--out", "\"" + f->out + "\"", "an OpenEXR file name (.exr)");
-    if (!f->png.empty() && lowerExtension(f->png) != ".png")
-      throw InputError("", "--png", "\"" + f->png + "\"", "a PNG file name (.png)");
+    requireExtension(f->out, "--out", {".exr"}, "an OpenEXR file name (.exr)");
+    if (!f->png.empty()) requireExtension(f->png, "--png", {".png"}, "a PNG file name (.png)");
     Display d;
-    EiLayout L = f->disp.load(d);
-    if (f->gapOpt->count()) {
-      if (!(f->gapMm > 0.0) || !std::isfinite(f->gapMm))
-        throw InputError("", "--gap-mm", std::to_string(f->gapMm), "a gap > 0 mm");
-      L = L.withGap(f->gapMm);
-    }
+    EiLayout L = loadDisplayLayout(f->disp, d);
+    if (f->gapOpt->count()) L = L.withGap(checkedGap(f->gapMm, std::to_string(f->gapMm)));
     TriadWavelengths w = parseTriadWavelengths(d.panel, f->wavelengths);
     EiaFormation formed = formEiaFromSdf(L, f->sdf, w);
     Image eia = onPanel(L, formed.eia);

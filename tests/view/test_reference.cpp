@@ -10,7 +10,7 @@
 #include "core/parallel.h"
 #include "core/transform.h"
 #include "spectral/cie.h"
-#include "synthesis/placement.h"
+#include "field/placement.h"
 #include "view/display_pose.h"
 #include "view/reference_renderer.h"
 #include "view_test_util.h"

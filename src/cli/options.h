@@ -1,0 +1,85 @@
+#pragma once
+// Option groups that several commands share, declared once: run options (seed, threads),
+// the display and its EI layout, placement, real-lens rays, output names; the rule "an option
+// given on the command line, else the run file's value, else the default"; and the table that
+// names a library setting by its flag when an error is printed.
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <functional>
+#include <initializer_list>
+#include <optional>
+#include <string>
+
+#include "core/error.h"
+#include "display/display.h"
+#include "display/ei_layout.h"
+#include "field/placement.h"
+#include "mla/real_lens_rays.h"
+
+namespace inim::cli {
+
+// --seed and --threads. `body` is the command: it runs with the thread limit in force.
+struct RunOptions {
+  uint64_t seed = 1;
+  int threads = 0;  // 0 = all cores
+  CLI::Option* seedOpt = nullptr;
+};
+void addRunOptions(CLI::App* cmd, RunOptions& opts, std::function<void()> body);
+
+// The option's value when it was given on the command line, else the run file's, else
+// `fallback`.
+template <class T>
+T optionOrRun(const CLI::Option* option, const T& given, const std::optional<T>& fromRun, const T& fallback) {
+  if (option && option->count()) return given;
+  return fromRun ? *fromRun : fallback;
+}
+
+// --display, --layout, --viewing-distance-mm.
+struct DisplayArgs {
+  std::string display, layout;
+  double viewingDistanceMm = 0.0;
+  CLI::Option *displayOpt = nullptr, *layoutOpt = nullptr, *distanceOpt = nullptr;
+};
+void addDisplayOptions(CLI::App* cmd, DisplayArgs& a);
+// Loads the display (the run file's when --display is absent, else the default) into `d` and
+// returns its EI layout with the layout options (or the run file's) applied.
+EiLayout loadDisplayLayout(const DisplayArgs& a, Display& d, const RunFile* run = nullptr);
+// A --gap-mm value, checked: InputError naming the option unless > 0 and finite.
+double checkedGap(double gapMm, const std::string& shown);
+
+// --scale, --rotate-deg, --translate-mm.
+struct PlacementArgs {
+  std::string scale, rotate, translate;
+};
+void addPlacementOptions(CLI::App* cmd, PlacementArgs& a);
+bool anyPlacementGiven(const PlacementArgs& a);
+PlacementOverride placementOverride(const PlacementArgs& a);
+
+// --real-lens, --real-lens-ray, --wavelength-nm.
+struct RealLensArgs {
+  bool on = false;
+  std::string model = "centroid";
+  double wavelengthNm = kLambdaDNm;
+  CLI::Option *onOpt = nullptr, *modelOpt = nullptr, *wavelengthOpt = nullptr;
+};
+void addRealLensOptions(CLI::App* cmd, RealLensArgs& a, const std::string& help);
+// The options checked (InputError naming the option when one is given without --real-lens).
+RealLensRayOptions realLensRayOptions(const RealLensArgs& a);
+// The real-lens display rays of the layout (a progress bar when `bar` and on a terminal).
+RaySet traceRealLensRays(const Display& d, const EiLayout& L, const RealLensRayOptions& o, RealLensRayStats* stats,
+                         bool bar);
+
+// InputError naming `key` unless `path` ends in one of `extensions` (".exr").
+void requireExtension(const std::string& path, const std::string& key, std::initializer_list<const char*> extensions,
+                      const std::string& what);
+// The PNG beside an output: `png` when given, else `out` with the extension .png.
+std::string pngBeside(const std::string& out, const std::string& png);
+
+// The flag that sets a library setting ("spp" -> "--spp", "vcp_mm" -> "--vcp-mm"); a key that
+// no flag sets is returned as it is.
+std::string flagForSetting(const std::string& key);
+// The error as the command line reports it: a setting named by its flag. Errors about a file
+// keep the file's own key.
+InputError asCommandLineError(const InputError& e);
+
+}  // namespace inim::cli
