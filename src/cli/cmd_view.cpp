@@ -1,27 +1,17 @@
 // inim view: what a camera sees when the display shows an EIA (spectral Monte Carlo through the
 // camera lens, the MLA and the panel's subpixels; src/view/view_renderer.h).
 // inim reference: the same camera and pose looking at the scene itself, at the placement the
-// EIA was made with (src/view/reference_renderer.h).
-// Both write linear camera RGB (x exposure) as EXR and an sRGB PNG beside it.
+// EIA was made with (src/view/reference_renderer.h). Both run in src/experiments/camera_run.h.
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <future>
 #include <memory>
 #include <string>
 
-#include "camera/camera_config.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/format.h"
-#include "core/output_file.h"
-#include "fields/field_factory.h"
-#include "view/display_model.h"
-#include "view/reference_renderer.h"
-#include "view/view_camera.h"
-#include "view/view_image.h"
-#include "view/view_renderer.h"
+#include "experiments/camera_run.h"
 
 namespace inim::cli {
 
@@ -29,90 +19,50 @@ namespace {
 
 // Options shared by `view` and `reference`: camera, pose, image size, samples, outputs.
 struct CameraPoseOpts {
-  std::string camera, cameraModel, exposure = "auto", out, png;
-  double distanceMm = 0.0, rotH = 0.0, rotV = 0.0, focusMm = 0.0;
-  int width = 0, height = 0, spp = 16;
+  CameraRunSettings s;
+  std::string cameraModel;
+  double distanceMm = 0.0;
+  int spp = 16;
   bool quiet = false;
   RunOptions run;
   CLI::Option *distanceOpt = nullptr, *sppOpt = nullptr;
+  // The settings with the options that need their own parsing applied.
+  CameraRunSettings settings() const {
+    CameraRunSettings c = s;
+    if (!cameraModel.empty())
+      c.model = cameraModel == "pinhole"     ? CameraModelKind::Pinhole
+                : cameraModel == "thin-lens" ? CameraModelKind::ThinLens
+                                             : CameraModelKind::RealLens;
+    if (distanceOpt->count()) c.distanceMm = distanceMm;
+    return c;
+  }
 };
 
 void addCameraPoseOptions(CLI::App* cmd, CameraPoseOpts& o) {
-  cmd->add_option("--camera", o.camera, "Camera: a name in optics/cameras/ or a JSON file (default: alvium-1800-u-500c)");
+  cmd->add_option("--camera", o.s.camera, "Camera: a name in optics/cameras/ or a JSON file (default: alvium-1800-u-500c)");
   cmd->add_option("--camera-model", o.cameraModel, "real-lens, thin-lens or pinhole (default: the camera file's)")
       ->check(CLI::IsMember({"real-lens", "thin-lens", "pinhole"}));
   o.distanceOpt = cmd->add_option("--distance-mm", o.distanceMm,
                                   "Camera (entrance pupil) to display centre, mm (default: the camera file's distance_mm)");
-  cmd->add_option("--rot-h-deg", o.rotH,
+  cmd->add_option("--rot-h-deg", o.s.rotHDeg,
                   "Display rotation about its vertical axis, degrees; + turns its right edge away from the camera")
       ->capture_default_str();
-  cmd->add_option("--rot-v-deg", o.rotV,
+  cmd->add_option("--rot-v-deg", o.s.rotVDeg,
                   "Display rotation about its horizontal axis, degrees; + turns its top edge away from the camera")
       ->capture_default_str();
-  cmd->add_option("--focus-mm", o.focusMm, "Focus distance from the entrance pupil, mm (default: the camera distance, "
-                                           "i.e. the MLA plane)");
-  cmd->add_option("--width", o.width, "Image width in pixels (default: the sensor's; a smaller width keeps the field of "
-                                      "view and scales the pixel pitch)");
-  cmd->add_option("--height", o.height, "Image height in pixels (default: the sensor's aspect ratio)");
+  cmd->add_option("--focus-mm", o.s.focusMm, "Focus distance from the entrance pupil, mm (default: the camera "
+                                             "distance, i.e. the MLA plane)");
+  cmd->add_option("--width", o.s.width, "Image width in pixels (default: the sensor's; a smaller width keeps the field "
+                                        "of view and scales the pixel pitch)");
+  cmd->add_option("--height", o.s.height, "Image height in pixels (default: the sensor's aspect ratio)");
   o.sppOpt = cmd->add_option("--spp", o.spp, "Samples per pixel")->capture_default_str();
-  cmd->add_option("--exposure", o.exposure,
+  cmd->add_option("--exposure", o.s.exposure,
                   "Exposure factor applied to the EXR and the PNG, or auto (99th percentile of the brightest channel "
                   "-> 0.9)")
       ->capture_default_str();
-  cmd->add_option("--out", o.out, "Output EXR: linear, white-balanced camera RGB x exposure")->required();
-  cmd->add_option("--png", o.png, "sRGB PNG (default: beside --out, same name, .png)");
+  cmd->add_option("--out", o.s.out, "Output EXR: linear, white-balanced camera RGB x exposure")->required();
+  cmd->add_option("--png", o.s.png, "sRGB PNG (default: beside --out, same name, .png)");
   cmd->add_flag("--quiet", o.quiet, "Print nothing but warnings");
-}
-
-struct CameraSetup {
-  CameraDescription desc;
-  DisplayPose pose;
-  std::unique_ptr<CameraModel> camera;
-  Exposure exposure;
-  std::string png;
-};
-
-CameraSetup setupCamera(const CameraPoseOpts& o) {
-  if (o.spp < 1) throw InputError("", "--spp", std::to_string(o.spp), "a whole number >= 1");
-  requireExtension(o.out, "--out", {".exr"}, "an OpenEXR file name (.exr)");
-  CameraSetup s;
-  s.png = pngBeside(o.out, o.png);
-  requireExtension(s.png, "--png", {".png"}, "a PNG file name (.png)");
-  s.exposure = parseExposure(o.exposure);
-  for (auto [v, key] : {std::pair{o.width, "--width"}, {o.height, "--height"}})
-    if (v < 0) throw InputError("", key, std::to_string(v), "a whole number of pixels >= 1");
-  s.desc = loadCameraDescription(o.camera.empty() ? defaultCameraPath() : o.camera);
-  s.pose.rotHDeg = o.rotH;
-  s.pose.rotVDeg = o.rotV;
-  s.pose.distanceMm = o.distanceOpt->count() ? o.distanceMm : s.desc.distanceMm;
-  if (!(s.pose.distanceMm > 0.0) || !std::isfinite(s.pose.distanceMm))
-    throw InputError("", "--distance-mm", formatNumber(s.pose.distanceMm), "a camera distance > 0 mm");
-  ViewCameraOptions co;
-  if (!o.cameraModel.empty())
-    co.kind = o.cameraModel == "pinhole"     ? CameraModelKind::Pinhole
-              : o.cameraModel == "thin-lens" ? CameraModelKind::ThinLens
-                                             : CameraModelKind::RealLens;
-  co.width = o.width;
-  co.height = o.height;
-  co.focusMm = o.focusMm;
-  if (o.focusMm < 0.0 || !std::isfinite(o.focusMm))
-    throw InputError("", "--focus-mm", formatNumber(o.focusMm), "a focus distance > 0 mm");
-  s.camera = makeViewCamera(s.desc, s.pose, co);
-  return s;
-}
-
-// Writes the exposed EXR and the sRGB PNG together (temporaries renamed only when both
-// succeed); returns the exposure factor.
-double writeOutputs(const Image& cameraRgb, const CameraSetup& cs, const std::string& out) {
-  const double k = exposureFactor(cameraRgb, cs.desc.sensor, cs.exposure);
-  const Image exposed = scaledImage(cameraRgb, k);
-  OutputSet outputs;
-  const std::string exrTmp = outputs.add(out), pngTmp = outputs.add(cs.png);
-  auto exr = std::async(std::launch::async, [&] { writeImage(exposed, exrTmp); });
-  writeImage(cameraRgbToSrgb(exposed, cs.desc.sensor), pngTmp);
-  exr.get();
-  outputs.commit();
-  return k;
 }
 
 void printCamera(const CameraSetup& cs) {
@@ -139,19 +89,6 @@ struct ViewOpts {
   bool noCoverGlass = false, relative = false, noCull = false;
   CLI::Option* gapOpt = nullptr;
 };
-
-// The EIA image, checked: EXR (linear drive values) or PNG (decoded through the panel's EOTF).
-Image readEia(const std::string& path) {
-  const std::string ext = lowerExtension(path);
-  if (ext != ".exr" && ext != ".png")
-    throw InputError("", "--eia", "\"" + path + "\"", "an EIA image: linear EXR (or encoded PNG)");
-  if (!std::filesystem::exists(path)) throw InputError(path, "--eia", "\"" + path + "\"", "an existing EIA image");
-  try {
-    return readImage(path, true);
-  } catch (const InputError& e) {
-    throw e.file().empty() ? e.withFile(path) : e;
-  }
-}
 
 ViewSettings viewSettings(const ViewOpts& o) {
   ViewSettings vs;
@@ -193,43 +130,39 @@ void printViewStats(const ViewSettings& vs, const ViewResult& r, double total, d
     std::printf("estimator:   %s\n", panelEstimatorName(vs.panelEstimator));
 }
 
-void runView(const ViewOpts& o) {
+void runViewCommand(const ViewOpts& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  CameraSetup cs = setupCamera(o.cam);
-  if (!(o.background >= 0.0) || !std::isfinite(o.background))
-    throw InputError("", "--background", formatNumber(o.background), "a luminance >= 0");
-  if (!(o.cosN >= 0.0) || !std::isfinite(o.cosN))
-    throw InputError("", "--emission-cos-n", formatNumber(o.cosN), "an exponent >= 0");
-  Display d;
-  const EiLayout L = loadDisplayLayout(o.display, d);
-  const double gap = o.gapOpt->count() ? o.gapMm : d.reconstructionGapMm;
-  const double g = checkedGap(gap, formatNumber(gap));
-  const Image eia = readEia(o.eia);
-  EmitterSettings es;
-  es.absolute = !o.relative;
-  es.cosExponent = o.cosN;
-  es.coverGlass = !o.noCoverGlass;
-  es.encoded = lowerExtension(o.eia) == ".png";
-  DisplayModel dm = makeDisplayModel(d, L, eia, o.eia, o.mla == "ideal" ? MlaKind::Ideal : MlaKind::Real, g, es);
-  const ViewSettings vs = viewSettings(o);
-  if (!o.cam.quiet) {
-    std::printf("display:     %s (g = %s mm, %s MLA%s)\n", d.name.c_str(), formatNumber(g).c_str(),
-                o.mla == "ideal" ? "ideal thin-lens" : "real refracting", dm.panel->hasCoverGlass() ? ", cover glass" : "");
-    std::printf("eia:         %s (%d x %d px)\n", o.eia.c_str(), eia.width, eia.height);
-    printCamera(cs);
+  const std::string ext = lowerExtension(o.eia);
+  if (ext != ".exr" && ext != ".png")
+    throw InputError("", "--eia", "\"" + o.eia + "\"", "an EIA image: linear EXR (or encoded PNG)");
+  if (!std::filesystem::exists(o.eia)) throw InputError(o.eia, "--eia", "\"" + o.eia + "\"", "an existing EIA image");
+  ViewRunSettings s;
+  s.camera = o.cam.settings();
+  s.displayPath = o.display.display;
+  s.layout = layoutOverride(o.display);
+  if (o.gapOpt->count()) s.gapMm = o.gapMm;
+  s.eiaPath = o.eia;
+  s.mla = o.mla == "ideal" ? MlaKind::Ideal : MlaKind::Real;
+  s.emitter.absolute = !o.relative;
+  s.emitter.cosExponent = o.cosN;
+  s.emitter.coverGlass = !o.noCoverGlass;
+  s.view = viewSettings(o);
+  const ViewRunResult r = runView(s, [&](const ViewRunResult& v) {
+    if (o.cam.quiet) return;
+    std::printf("display:     %s (g = %s mm, %s MLA%s)\n", v.display.name.c_str(), formatNumber(v.gapMm).c_str(),
+                o.mla == "ideal" ? "ideal thin-lens" : "real refracting", v.coverGlass ? ", cover glass" : "");
+    std::printf("eia:         %s (%d x %d px)\n", o.eia.c_str(), v.eiaWidth, v.eiaHeight);
+    printCamera(v.camera);
     std::fflush(stdout);
-  }
-  const double loadSeconds = secondsSince(t0);
-  const ViewResult r = renderView(*cs.camera, cs.desc.sensor, *dm.mla, *dm.panel, dm.area, vs);
-  const double k = writeOutputs(r.image, cs, o.cam.out);
-  if (!r.stats.displayInView())
+  });
+  if (!r.render.stats.displayInView())
     std::fprintf(stderr,
                  "inim: warning: the display is out of the camera's view (%s): no camera ray reaches its active "
                  "area; the image shows only the background\n",
-                 cs.pose.describe().c_str());
+                 r.camera.pose.describe().c_str());
   if (o.cam.quiet) return;
-  printViewStats(vs, r, secondsSince(t0), loadSeconds);
-  printWritten(k, cs, o.cam.out);
+  printViewStats(s.view, r.render, secondsSince(t0), r.loadSeconds);
+  printWritten(r.exposureFactor, r.camera, o.cam.s.out);
 }
 
 }  // namespace
@@ -274,7 +207,7 @@ void addViewCommand(CLI::App& app) {
   cmd->add_flag("--no-cull", o->noCull, "Trace every tile, also those that cannot see the display");
   cmd->add_flag("--relative", o->relative, "Panel white = luminance 1 instead of its peak luminance in cd/m^2");
   addCameraPoseOptions(cmd, o->cam);
-  addRunOptions(cmd, o->cam.run, [o] { runView(*o); });
+  addRunOptions(cmd, o->cam.run, [o] { runViewCommand(*o); });
 }
 
 void addReferenceCommand(CLI::App& app) {
@@ -297,32 +230,29 @@ void addReferenceCommand(CLI::App& app) {
   addRunOptions(cmd, o->cam.run, [o] {
     const auto t0 = std::chrono::steady_clock::now();
     const RunFile run = o->run.empty() ? RunFile{} : loadRunFile(o->run);
-    const std::string scenePath = !o->scene.empty() ? o->scene : run.scene.value_or(defaultScenePath());
-    const LoadedField lf = loadField(scenePath, "scene");
-    const Placement pl = resolvePlacement(run.placement ? run.placement : lf.placement, placementOverride(o->place));
-    const Transform toDisplay = pl.toDisplay();
-    CameraSetup cs = setupCamera(o->cam);
-    Display d = loadDisplay(displayPathOrDefault(!o->display.empty() ? o->display : run.display.value_or("")));
-    const DisplayArea area = lensletArrayArea(computeLayout(d), d.mla.pitchMm);
-    if (!o->cam.quiet) {
-      std::printf("scene:       %s; placement %s\n", scenePath.c_str(), pl.describe().c_str());
-      printCamera(cs);
+    ReferenceRunSettings s;
+    s.camera = o->cam.settings();
+    s.fieldPath = !o->scene.empty() ? o->scene : run.scene.value_or("");
+    s.placement = run.placement;
+    s.placementOverride = placementOverride(o->place);
+    s.displayPath = !o->display.empty() ? o->display : run.display.value_or("");
+    s.reference.spp = o->cam.spp;
+    s.reference.seed = o->cam.run.seed;
+    s.reference.progress = !o->cam.quiet;
+    const ReferenceRunResult r = runReference(s, [&](const ReferenceRunResult& v) {
+      if (o->cam.quiet) return;
+      std::printf("scene:       %s; placement %s\n", v.fieldPath.c_str(), v.placement.describe().c_str());
+      printCamera(v.camera);
       std::fflush(stdout);
-    }
-    ReferenceSettings rs;
-    rs.spp = o->cam.spp;
-    rs.seed = o->cam.run.seed;
-    rs.progress = !o->cam.quiet;
-    const ViewResult r = renderReference(*lf.field, toDisplay, *cs.camera, cs.desc.sensor, rs);
-    const double k = writeOutputs(r.image, cs, o->cam.out);
-    if (displayCoverage(*cs.camera, area) == 0.0)
+    });
+    if (!r.displayInView)
       std::fprintf(stderr, "inim: warning: the display is out of the camera's view (%s); the reference is rendered anyway\n",
-                   cs.pose.describe().c_str());
+                   r.camera.pose.describe().c_str());
     if (o->cam.quiet) return;
-    std::printf("rendered:    %d spp, %.2f s render, %.2f s total; %llu rays, %llu hit the scene\n", rs.spp,
-                r.stats.seconds, secondsSince(t0), (unsigned long long)r.stats.tracedRays,
-                (unsigned long long)r.stats.emittingRays);
-    printWritten(k, cs, o->cam.out);
+    std::printf("rendered:    %d spp, %.2f s render, %.2f s total; %llu rays, %llu hit the scene\n", s.reference.spp,
+                r.render.stats.seconds, secondsSince(t0), (unsigned long long)r.render.stats.tracedRays,
+                (unsigned long long)r.render.stats.emittingRays);
+    printWritten(r.exposureFactor, r.camera, o->cam.s.out);
   });
 }
 

@@ -9,7 +9,6 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "mla/real_mla.h"
-#include "synthesis/display_overrides.h"
 
 namespace inim::cli {
 
@@ -28,14 +27,19 @@ void addDisplayOptions(CLI::App* cmd, DisplayArgs& a) {
   a.distanceOpt = cmd->add_option("--viewing-distance-mm", a.viewingDistanceMm, "Viewing distance D for toed-in");
 }
 
+LayoutOverride layoutOverride(const DisplayArgs& a) {
+  LayoutOverride lo;
+  if (a.layoutOpt->count()) lo.layout = a.layout;
+  if (a.distanceOpt->count()) lo.viewingDistanceMm = a.viewingDistanceMm;
+  return lo;
+}
+
 EiLayout loadDisplayLayout(const DisplayArgs& a, Display& d, const RunFile* run) {
   const std::optional<std::string> runDisplay = run ? run->display : std::nullopt;
   d = loadDisplay(displayPathOrDefault(optionOrRun(a.displayOpt, a.display, runDisplay, std::string())));
-  LayoutOverride lo;
-  if (a.layoutOpt->count()) lo.layout = a.layout;
-  else if (run && run->layout) lo.layout = *run->layout, lo.layoutKey = "layout (" + run->file + ")";
-  if (a.distanceOpt->count()) lo.viewingDistanceMm = a.viewingDistanceMm;
-  else if (run && run->viewingDistanceMm)
+  LayoutOverride lo = layoutOverride(a);
+  if (!lo.layout && run && run->layout) lo.layout = *run->layout, lo.layoutKey = "layout (" + run->file + ")";
+  if (!lo.viewingDistanceMm && run && run->viewingDistanceMm)
     lo.viewingDistanceMm = *run->viewingDistanceMm, lo.distanceKey = "viewing_distance_mm (" + run->file + ")";
   return applyLayoutOverride(d, lo);
 }

@@ -15,6 +15,7 @@
 #include "display/ei_layout.h"
 #include "field/placement.h"
 #include "mla/real_lens_rays.h"
+#include "synthesis/display_overrides.h"
 
 namespace inim::cli {
 
@@ -41,6 +42,8 @@ struct DisplayArgs {
   CLI::Option *displayOpt = nullptr, *layoutOpt = nullptr, *distanceOpt = nullptr;
 };
 void addDisplayOptions(CLI::App* cmd, DisplayArgs& a);
+// The layout options given on the command line.
+LayoutOverride layoutOverride(const DisplayArgs& a);
 // Loads the display (the run file's when --display is absent, else the default) into `d` and
 // returns its EI layout with the layout options (or the run file's) applied.
 EiLayout loadDisplayLayout(const DisplayArgs& a, Display& d, const RunFile* run = nullptr);
