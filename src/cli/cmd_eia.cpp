@@ -1,23 +1,16 @@
 // inim eia: orthoscopic elemental-image synthesis. Display + scene (a Field) + placement ->
 // the EIA at the panel's full resolution: a linear EXR of drive values (+ A, Z with --aovs),
 // an encoded PNG beside it, and optionally the placement preview and the triads as a Zemax
-// SDF source file. See src/synthesis/eia_synthesis.h.
+// SDF source file. The run is src/experiments/eia_run.h.
 #include <chrono>
 #include <cstdio>
-#include <future>
 #include <memory>
 #include <string>
 
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/format.h"
-#include "core/output_file.h"
-#include "core/progress.h"
-#include "fields/field_factory.h"
-#include "rays/pinhole_rays.h"
-#include "synthesis/eia_synthesis.h"
-#include "synthesis/preview.h"
-#include "triads/triads.h"
+#include "experiments/eia_run.h"
 
 namespace inim::cli {
 
@@ -36,21 +29,19 @@ struct EiaOpts {
   CLI::Option *sceneOpt, *fieldOpt, *colorsOpt, *triOpt, *vcpOpt, *sppOpt, *expOpt, *gamutOpt, *wbOpt;
 };
 
-// The field to show, unless external colours are given (they need the layout and spp).
-LoadedField loadShownField(const EiaOpts& o, const RunFile& run) {
+// Settings: defaults < run file < command line. The field's own default placement (a trained
+// model's) is below the run file's.
+EiaRunSettings eiaRunSettings(const EiaOpts& o, const RunFile& run) {
+  EiaRunSettings e;
   if (int(o.sceneOpt->count()) + int(o.fieldOpt->count()) + int(o.colorsOpt->count()) > 1)
     throw InputError("", "--field", "more than one of --scene, --field, --field-colors", "one field source");
-  if (o.colorsOpt->count()) return {};
-  const std::string path = o.sceneOpt->count() ? o.scene : o.fieldOpt->count() ? o.field
-                                                         : run.scene.value_or(defaultScenePath());
-  return loadField(path, o.fieldOpt->count() ? "field" : "scene");
-}
-
-// Settings: defaults < run file < command line. A trained field carries its own default
-// placement (the run file and the command line override it).
-SynthesisSettings synthesisSettings(const EiaOpts& o, const RunFile& run, const LoadedField& lf) {
-  SynthesisSettings s;
-  s.placement = resolvePlacement(run.placement ? run.placement : lf.placement, placementOverride(o.place));
+  e.fieldPath = o.sceneOpt->count() ? o.scene : o.fieldOpt->count() ? o.field : run.scene.value_or("");
+  e.fieldKey = o.fieldOpt->count() ? "field" : "scene";
+  e.fieldColorsPath = o.fieldColors;
+  e.colorsEncoding = o.colorsEncoding == "srgb" ? ColorEncoding::SRGB : ColorEncoding::Linear;
+  e.placement = run.placement;
+  e.placementOverride = placementOverride(o.place);
+  SynthesisSettings& s = e.synthesis;
   s.vcpMm = optionOrRun(o.vcpOpt, o.vcpMm, run.vcpMm, kDefaultVcpMm);
   if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", formatNumber(s.vcpMm), "a finite distance in mm");
   s.spp = optionOrRun(o.sppOpt, o.spp, run.spp, 1);
@@ -72,10 +63,18 @@ SynthesisSettings synthesisSettings(const EiaOpts& o, const RunFile& run, const 
   s.whiteBalanceD65 = wb == "d65";
   s.aovs = o.aovs;
   s.progress = !o.quiet;
-  return s;
+  e.displayPath = optionOrRun(o.display.displayOpt, o.display.display, run.display, std::string());
+  e.layout = layoutOverride(o.display, &run);
+  const RealLensRayOptions realLens = realLensRayOptions(o.realLens);  // an error without --real-lens
+  if (o.realLens.on) e.realLens = realLens;
+  e.triadWavelengths = optionOrRun(o.triOpt, o.triads, run.triadWavelengths, std::string("panel"));
+  e.out = o.out, e.png = o.png, e.preview = o.preview, e.sdf = o.sdf;
+  return e;
 }
 
-void printSetup(const Display& d, const EiLayout& L, const LoadedField& lf, const SynthesisSettings& s) {
+void printSetup(const EiaRunResult& r, double vcpMm) {
+  const Display& d = r.display;
+  const EiLayout& L = r.layout;
   if (L.isHex())
     std::printf("display:     %s (%s layout, hex lattice: %d rows of %d EIs, %d px across the flats, g = %s mm; "
                 "panel %d x %d px)\n",
@@ -85,8 +84,10 @@ void printSetup(const Display& d, const EiLayout& L, const LoadedField& lf, cons
     std::printf("display:     %s (%s layout, %d x %d EIs of %d x %d px, g = %s mm; panel %d x %d px)\n",
                 d.name.c_str(), layoutName(L.kind), L.eiCols, L.eiRows, L.eiW, L.eiH, formatNumber(L.gapMm).c_str(),
                 L.panelW, L.panelH);
-  std::printf("field:       %s (%s)\n", lf.path.c_str(), fieldKindName(lf.kind));
-  std::printf("placement:   %s; VCP at z = %s mm\n", s.placement.describe().c_str(), formatNumber(s.vcpMm).c_str());
+  std::printf("field:       %s (%s)\n", r.fieldPath.c_str(), fieldKindName(r.fieldKind));
+  std::printf("placement:   %s; VCP at z = %s mm\n", r.placement.describe().c_str(), formatNumber(vcpMm).c_str());
+  if (!r.realLensSummary.empty()) std::printf("rays:        %s\n", r.realLensSummary.c_str());
+  std::fflush(stdout);
 }
 
 // The synthesis summary without its warnings (they went to stderr already).
@@ -152,78 +153,25 @@ void addEiaCommand(CLI::App& app) {
       throw InputError("", "--field-colors-encoding", "\"" + o->colorsEncoding + "\"", "srgb or linear");
     const auto t0 = std::chrono::steady_clock::now();
     const RunFile run = o->run.empty() ? RunFile{} : loadRunFile(o->run);
-    LoadedField lf = loadShownField(*o, run);
-    SynthesisSettings s = synthesisSettings(*o, run, lf);
-
-    // Outputs: checked before the work starts.
-    requireExtension(o->out, "--out", {".exr"}, "an OpenEXR file name (.exr)");
-    const std::string png = pngBeside(o->out, o->png);
-    requireExtension(png, "--png", {".png"}, "a PNG file name (.png)");
-    if (!o->preview.empty()) requireExtension(o->preview, "--preview", {".png"}, "a PNG file name (.png)");
-    if (!o->sdf.empty()) requireExtension(o->sdf, "--sdf", {".sdf", ".dat"}, "a Zemax source file name (.sdf or .dat)");
-
-    Display d;
-    const EiLayout L = loadDisplayLayout(o->display, d, &run);
-    const RealLensRayOptions ro = realLensRayOptions(o->realLens);
-    RealLensRayStats realStats;
-    const RaySet realRays = o->realLens.on ? traceRealLensRays(d, L, ro, &realStats, !o->quiet) : RaySet{};
-    if (o->realLens.on) s.displayRays = &realRays;
-    const TriadWavelengths tw =
-        parseTriadWavelengths(d.panel, optionOrRun(o->triOpt, o->triads, run.triadWavelengths, std::string("panel")));
-    if (o->colorsOpt->count())
-      lf = loadFieldColors(o->fieldColors, s.spp, size_t(L.numRays()) * size_t(s.spp),
-                           o->colorsEncoding == "srgb" ? ColorEncoding::SRGB : ColorEncoding::Linear);
-    if (!o->quiet) {
-      printSetup(d, L, lf, s);
-      if (o->realLens.on) std::printf("rays:        %s\n", summaryText(ro, realStats).c_str());
-      std::fflush(stdout);
-    }
-
-    const double loadSeconds = secondsSince(t0);
-    const SynthesisResult r = synthesizeEia(L, d.panel, *lf.field, s);
-
-    // Outputs: each to a temporary, written concurrently (EXR and PNG compression are single
-    // threaded), renamed into place together only when all succeeded.
-    const auto tw0 = std::chrono::steady_clock::now();
-    OutputSet outputs;
-    const std::string exrTmp = outputs.add(o->out), pngTmp = outputs.add(png);
-    const std::string previewTmp = o->preview.empty() ? "" : outputs.add(o->preview);
-    const std::string sdfTmp = o->sdf.empty() ? "" : outputs.add(o->sdf);
-    PreviewResult pv;
-    if (!o->preview.empty()) {
-      PreviewSettings ps;
-      ps.seed = s.seed;
-      pv = renderPlacementPreview(L, *lf.field, s.placement.toDisplay(), s.vcpMm, ps);
-    }
-    std::vector<std::future<void>> writes;
-    writes.push_back(std::async(std::launch::async, [&] { writeImage(r.eia, exrTmp); }));
-    writes.push_back(std::async(std::launch::async, [&] { writeImage(encodeForPanel(r.eia, d.panel.eotf), pngTmp); }));
-    if (!previewTmp.empty()) writes.push_back(std::async(std::launch::async, [&] { writeImage(pv.image, previewTmp); }));
-    uint64_t triads = 0;
-    if (!sdfTmp.empty()) {
-      TriadOptions to;
-      to.description = "inim triads: " + d.name + ", " + tw.source;
-      ProgressBar bar("triads", uint64_t(L.numRays()) * 3, !o->quiet && ProgressBar::stderrIsTerminal());
-      triads = writeTriadSdf(sdfTmp, o->realLens.on ? realRays : generatePinholeRays(L), r.drive, tw, to, &bar);
-      bar.finish();
-    }
-    for (auto& w : writes) w.get();  // rethrows a writer's failure (the temporaries are removed)
-    outputs.commit();
-    const double writeSeconds = secondsSince(tw0);
-
-    for (const auto& w : r.stats.warnings) std::fprintf(stderr, "inim: warning: %s\n", w.c_str());
+    const EiaRunSettings s = eiaRunSettings(*o, run);
+    const EiaRunResult r = runEia(s, [&](const EiaRunResult& loaded) {
+      if (!o->quiet) printSetup(loaded, s.synthesis.vcpMm);
+    });
+    for (const auto& w : r.synthesis.stats.warnings) std::fprintf(stderr, "inim: warning: %s\n", w.c_str());
     if (o->quiet) return;
-    printSummary(r, s.gamut);
-    std::printf("wrote:       %s (%d x %d, %s), %s", o->out.c_str(), r.eia.width, r.eia.height,
-                s.aovs ? "R G B A Z" : "R G B", png.c_str());
+    printSummary(r.synthesis, s.synthesis.gamut);
+    std::printf("wrote:       %s (%d x %d, %s), %s", o->out.c_str(), r.synthesis.eia.width, r.synthesis.eia.height,
+                s.synthesis.aovs ? "R G B A Z" : "R G B", r.png.c_str());
+    const PreviewResult& pv = r.preview;
     if (!o->preview.empty())
       std::printf(", %s (%d lenslets: %d real, %d virtual, %d on the MLA plane, %d missed; scene crosses the MLA at %d)",
                   o->preview.c_str(), pv.lenslets, pv.real, pv.virtualHits, pv.onPlane, pv.missed, pv.crossingLenslets);
+    const TriadWavelengths& tw = r.triadWavelengths;
     if (!o->sdf.empty())
-      std::printf(", %s (%llu triad rays at %s/%s/%s nm)", o->sdf.c_str(), (unsigned long long)triads,
+      std::printf(", %s (%llu triad rays at %s/%s/%s nm)", o->sdf.c_str(), (unsigned long long)r.triads,
                   formatNumber(tw.nm[0]).c_str(), formatNumber(tw.nm[1]).c_str(), formatNumber(tw.nm[2]).c_str());
-    std::printf("\ntotal:       %.2f s (loading %.2f s, synthesis %.2f s, writing %.2f s)\n", secondsSince(t0), loadSeconds,
-                r.stats.seconds, writeSeconds);
+    std::printf("\ntotal:       %.2f s (loading %.2f s, synthesis %.2f s, writing %.2f s)\n", secondsSince(t0),
+                r.loadSeconds, r.synthesis.stats.seconds, r.writeSeconds);
   });
 }
 

@@ -45,7 +45,8 @@ void addTriadsCommand(CLI::App& app) {
   ex->add_flag("--flux-sum", e->fluxSum, "Header ray-set flux = sum of the ray fluxes (the paper wrote 1)");
   addRunOptions(ex, e->run, [e] {
     auto t0 = std::chrono::steady_clock::now();
-    requireExtension(e->out, "--out", {".sdf", ".dat"}, "a Zemax source file name (.sdf or .dat)");
+    if (lowerExtension(e->out) != ".sdf" && lowerExtension(e->out) != ".dat")
+      throw InputError("", "--out", "\"" + e->out + "\"", "a Zemax source file name (.sdf or .dat)");
     if (!(e->fluxScale > 0.0f) || !std::isfinite(e->fluxScale))
       throw InputError("", "--flux-scale", std::to_string(e->fluxScale), "a number > 0");
     Display d;
@@ -92,8 +93,9 @@ void addTriadsCommand(CLI::App& app) {
   f->gapOpt = fo->add_option("--gap-mm", f->gapMm, "Detector at z = -G (default: the display's generation gap)");
   addRunOptions(fo, f->run, [f] {
     auto t0 = std::chrono::steady_clock::now();
-    requireExtension(f->out, "--out", {".exr"}, "an OpenEXR file name (.exr)");
-    if (!f->png.empty()) requireExtension(f->png, "--png", {".png"}, "a PNG file name (.png)");
+    if (lowerExtension(f->out) != ".exr") throw InputError("", "--out", "\"" + f->out + "\"", "an OpenEXR file name (.exr)");
+    if (!f->png.empty() && lowerExtension(f->png) != ".png")
+      throw InputError("", "--png", "\"" + f->png + "\"", "a PNG file name (.png)");
     Display d;
     EiLayout L = loadDisplayLayout(f->disp, d);
     if (f->gapOpt->count()) L = L.withGap(checkedGap(f->gapMm, std::to_string(f->gapMm)));

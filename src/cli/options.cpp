@@ -1,7 +1,6 @@
 #include "cli/options.h"
 
 #include <cmath>
-#include <filesystem>
 #include <map>
 #include <memory>
 
@@ -27,21 +26,19 @@ void addDisplayOptions(CLI::App* cmd, DisplayArgs& a) {
   a.distanceOpt = cmd->add_option("--viewing-distance-mm", a.viewingDistanceMm, "Viewing distance D for toed-in");
 }
 
-LayoutOverride layoutOverride(const DisplayArgs& a) {
+LayoutOverride layoutOverride(const DisplayArgs& a, const RunFile* run) {
   LayoutOverride lo;
   if (a.layoutOpt->count()) lo.layout = a.layout;
+  else if (run && run->layout) lo.layout = *run->layout, lo.layoutKey = "layout (" + run->file + ")";
   if (a.distanceOpt->count()) lo.viewingDistanceMm = a.viewingDistanceMm;
+  else if (run && run->viewingDistanceMm)
+    lo.viewingDistanceMm = *run->viewingDistanceMm, lo.distanceKey = "viewing_distance_mm (" + run->file + ")";
   return lo;
 }
 
-EiLayout loadDisplayLayout(const DisplayArgs& a, Display& d, const RunFile* run) {
-  const std::optional<std::string> runDisplay = run ? run->display : std::nullopt;
-  d = loadDisplay(displayPathOrDefault(optionOrRun(a.displayOpt, a.display, runDisplay, std::string())));
-  LayoutOverride lo = layoutOverride(a);
-  if (!lo.layout && run && run->layout) lo.layout = *run->layout, lo.layoutKey = "layout (" + run->file + ")";
-  if (!lo.viewingDistanceMm && run && run->viewingDistanceMm)
-    lo.viewingDistanceMm = *run->viewingDistanceMm, lo.distanceKey = "viewing_distance_mm (" + run->file + ")";
-  return applyLayoutOverride(d, lo);
+EiLayout loadDisplayLayout(const DisplayArgs& a, Display& d) {
+  d = loadDisplay(displayPathOrDefault(a.display));
+  return applyLayoutOverride(d, layoutOverride(a));
 }
 
 double checkedGap(double gapMm, const std::string& shown) {
@@ -102,22 +99,11 @@ RaySet traceRealLensRays(const Display& d, const EiLayout& L, const RealLensRayO
   return rays;
 }
 
-void requireExtension(const std::string& path, const std::string& key, std::initializer_list<const char*> extensions,
-                      const std::string& what) {
-  const std::string ext = lowerExtension(path);
-  for (const char* e : extensions)
-    if (ext == e) return;
-  throw InputError("", key, "\"" + path + "\"", what);
-}
-
-std::string pngBeside(const std::string& out, const std::string& png) {
-  return png.empty() ? std::filesystem::path(out).replace_extension(".png").string() : png;
-}
-
 std::string flagForSetting(const std::string& key) {
   // Setting keys as the library and run files spell them -> the flags that set them.
   static const std::map<std::string, std::string> kFlags = {
-      {"spp", "--spp"}, {"seed", "--seed"}, {"threads", "--threads"},
+      {"spp", "--spp"}, {"seed", "--seed"}, {"threads", "--threads"}, {"out", "--out"}, {"png", "--png"},
+      {"preview", "--preview"}, {"sdf", "--sdf"}, {"eia", "--eia"},
       {"width", "--width"}, {"height", "--height"}, {"width/height", "--width/--height"},
       {"field", "--field"}, {"scene", "--scene"}, {"field_model", "--field-model"},
       {"display", "--display"}, {"layout", "--layout"}, {"viewing_distance_mm", "--viewing-distance-mm"},

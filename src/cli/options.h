@@ -6,7 +6,6 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <functional>
-#include <initializer_list>
 #include <optional>
 #include <string>
 
@@ -42,11 +41,11 @@ struct DisplayArgs {
   CLI::Option *displayOpt = nullptr, *layoutOpt = nullptr, *distanceOpt = nullptr;
 };
 void addDisplayOptions(CLI::App* cmd, DisplayArgs& a);
-// The layout options given on the command line.
-LayoutOverride layoutOverride(const DisplayArgs& a);
-// Loads the display (the run file's when --display is absent, else the default) into `d` and
-// returns its EI layout with the layout options (or the run file's) applied.
-EiLayout loadDisplayLayout(const DisplayArgs& a, Display& d, const RunFile* run = nullptr);
+// The layout options given on the command line, else the run file's.
+LayoutOverride layoutOverride(const DisplayArgs& a, const RunFile* run = nullptr);
+// Loads the display (the default when --display is absent) into `d` and returns its EI layout
+// with the layout options applied.
+EiLayout loadDisplayLayout(const DisplayArgs& a, Display& d);
 // A --gap-mm value, checked: InputError naming the option unless > 0 and finite.
 double checkedGap(double gapMm, const std::string& shown);
 
@@ -71,12 +70,6 @@ RealLensRayOptions realLensRayOptions(const RealLensArgs& a);
 // The real-lens display rays of the layout (a progress bar when `bar` and on a terminal).
 RaySet traceRealLensRays(const Display& d, const EiLayout& L, const RealLensRayOptions& o, RealLensRayStats* stats,
                          bool bar);
-
-// InputError naming `key` unless `path` ends in one of `extensions` (".exr").
-void requireExtension(const std::string& path, const std::string& key, std::initializer_list<const char*> extensions,
-                      const std::string& what);
-// The PNG beside an output: `png` when given, else `out` with the extension .png.
-std::string pngBeside(const std::string& out, const std::string& png);
 
 // The flag that sets a library setting ("spp" -> "--spp", "vcp_mm" -> "--vcp-mm"); a key that
 // no flag sets is returned as it is.
