@@ -90,20 +90,12 @@ RealLensRayOptions realLensRayOptions(const RealLensArgs& a) {
   return ro;
 }
 
-RaySet traceRealLensRays(const Display& d, const EiLayout& L, const RealLensRayOptions& o, RealLensRayStats* stats,
-                         bool bar) {
-  std::unique_ptr<RealMla> mla = RealMla::fromDisplay(d, L, L.gapMm);
-  ProgressBar progress("real-lens rays", uint64_t(L.numRays()), bar && ProgressBar::stderrIsTerminal());
-  RaySet rays = generateRealLensRays(L, *mla, o, stats, &progress);
-  progress.finish();
-  return rays;
-}
-
 std::string flagForSetting(const std::string& key) {
   // Setting keys as the library and run files spell them -> the flags that set them.
   static const std::map<std::string, std::string> kFlags = {
       {"spp", "--spp"}, {"seed", "--seed"}, {"threads", "--threads"}, {"out", "--out"}, {"png", "--png"},
       {"preview", "--preview"}, {"sdf", "--sdf"}, {"eia", "--eia"},
+      {"in", "--in"}, {"ei", "--ei"},
       {"width", "--width"}, {"height", "--height"}, {"width/height", "--width/--height"},
       {"field", "--field"}, {"scene", "--scene"}, {"field_model", "--field-model"},
       {"display", "--display"}, {"layout", "--layout"}, {"viewing_distance_mm", "--viewing-distance-mm"},

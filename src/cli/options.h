@@ -67,10 +67,6 @@ struct RealLensArgs {
 void addRealLensOptions(CLI::App* cmd, RealLensArgs& a, const std::string& help);
 // The options checked (InputError naming the option when one is given without --real-lens).
 RealLensRayOptions realLensRayOptions(const RealLensArgs& a);
-// The real-lens display rays of the layout (a progress bar when `bar` and on a terminal).
-RaySet traceRealLensRays(const Display& d, const EiLayout& L, const RealLensRayOptions& o, RealLensRayStats* stats,
-                         bool bar);
-
 // The flag that sets a library setting ("spp" -> "--spp", "vcp_mm" -> "--vcp-mm"); a key that
 // no flag sets is returned as it is.
 std::string flagForSetting(const std::string& key);
