@@ -1,21 +1,16 @@
 // inim train / inim eval: a voxel-grid radiance field (src/radiance) from a posed photo
 // dataset (src/dataset), and its held-out quality. See src/radiance/trainer.h and
-// src/fitting/fit_files.h.
+// src/fitting/fit_run.h.
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "core/output_file.h"
 #include "core/progress.h"
-#include "fitting/fit_files.h"
+#include "fitting/fit_run.h"
 #include "radiance/grid_io.h"
-
-namespace fs = std::filesystem;
 
 namespace inim::cli {
 
@@ -38,7 +33,7 @@ void addDataOptions(CLI::App* cmd, DataArgs& a) {
       ->capture_default_str();
 }
 
-Dataset loadData(const DataArgs& a) {
+DatasetOptions datasetOptions(const DataArgs& a) {
   DatasetOptions o;
   o.downscale = a.downscale;
   o.holdoutEvery = a.holdoutEvery;
@@ -48,7 +43,7 @@ Dataset loadData(const DataArgs& a) {
   if (!(glm::all(glm::greaterThanEqual(o.background, glm::vec3(0.0f))) &&
         glm::all(glm::lessThanEqual(o.background, glm::vec3(1.0f)))))
     throw InputError("", "--background", "\"" + a.background + "\"", "white, black or r,g,b in [0, 1]");
-  return loadDataset(a.data, o);
+  return o;
 }
 
 std::vector<int> parseIntList(const std::string& s, const std::string& key) {
@@ -93,10 +88,11 @@ struct TrainOpts {
 
 void runTrain(const TrainOpts& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (fs::path(o.out).extension() != ".inimrf")
-    throw InputError("", "--out", "\"" + o.out + "\"", "a model file name ending in .inimrf");
-  const std::string log = o.log.empty() ? fs::path(o.out).replace_extension(".csv").string() : o.log;
-  TrainConfig cfg;
+  TrainingRunSettings s;
+  s.dataPath = o.data.data;
+  s.modelPath = o.out;
+  s.logPath = o.log;
+  TrainConfig& cfg = s.config;
   cfg.iterations = o.iterations;
   cfg.batchSize = o.batch;
   cfg.shDegree = o.shDegree;
@@ -105,44 +101,25 @@ void runTrain(const TrainOpts& o) {
   cfg.resolutions = parseIntList(o.resolutions, "--resolutions");
   cfg.stageStarts = o.stageStarts.empty() ? defaultStageStarts(o.iterations, int(cfg.resolutions.size()))
                                           : parseIntList(o.stageStarts, "--stage-starts");
-  const Dataset data = loadData(o.data);
-  cfg.boxLo = Point3(data.sceneBox.lo), cfg.boxHi = Point3(data.sceneBox.hi);
-  cfg.background = Vec3(data.background);
-  const TrainingRays rays = datasetRays(data, data.train);
-  const bool terminal = !o.quiet && ProgressBar::stderrIsTerminal();
-  if (!o.quiet) printDataset(data);
-
-  OutputSet outputs;
-  const std::string modelTmp = outputs.add(o.out), logTmp = outputs.add(log);
-  std::ofstream csv(logTmp);
-  writeTrainingLogHeader(csv);
-  VoxelGrid grid;
-  const TrainStats st = train(grid, rays, cfg, [&](const TrainProgress& p) {
-    writeTrainingLogRow(csv, p);
-    if (terminal) {
+  s.data = datasetOptions(o.data);
+  if (!o.quiet) s.loaded = printDataset;
+  if (!o.quiet && ProgressBar::stderrIsTerminal())
+    s.progress = [](const TrainProgress& p) {
       std::fprintf(stderr, "\rtrain  iteration %d/%d  loss %.5f  PSNR %.2f dB  grid %dx%dx%d  %.0f s   ", p.iteration,
                    p.iterations, p.loss, p.psnr, p.res.x, p.res.y, p.res.z, p.elapsedSeconds);
       std::fflush(stderr);
-    }
-    return true;
-  });
-  if (terminal) std::fprintf(stderr, "\n");
-  csv.close();
-  if (!csv) throw std::runtime_error("cannot write " + log);
-  grid.metadata = modelMetadata(data);
-  saveVoxelGrid(grid, modelTmp);
-  const auto te = std::chrono::steady_clock::now();
-  const std::vector<ViewScore> scores = evaluate(grid, data, data.test, nullptr);
-  const double evalSeconds = secondsSince(te);
-  outputs.commit();
+    };
+  const TrainingRunResult r = runTraining(s);
+  if (s.progress) std::fprintf(stderr, "\n");
   if (o.quiet) return;
+  const TrainStats& st = r.stats;
   std::printf("trained:     %d iterations of %d rays in %.1f s (last batch: loss %.5f, PSNR %.2f dB)%s\n", st.iterations,
               cfg.batchSize, st.seconds, st.loss, st.psnr, st.stoppedEarly ? ", stopped early" : "");
-  if (!scores.empty())
-    std::printf("held out:    %zu views, PSNR %.2f dB, SSIM %.4f (rendered in %.1f s)\n", scores.size(),
-                meanPsnr(scores), meanSsim(scores), evalSeconds);
-  std::printf("wrote:       %s (grid %dx%dx%d, SH degree %d), %s; total %.1f s\n", o.out.c_str(), grid.res.x,
-              grid.res.y, grid.res.z, grid.shDegree, log.c_str(), secondsSince(t0));
+  if (!r.heldOut.empty())
+    std::printf("held out:    %zu views, PSNR %.2f dB, SSIM %.4f (rendered in %.1f s)\n", r.heldOut.size(),
+                meanPsnr(r.heldOut), meanSsim(r.heldOut), r.evalSeconds);
+  std::printf("wrote:       %s (grid %dx%dx%d, SH degree %d), %s; total %.1f s\n", o.out.c_str(), r.gridResolution.x,
+              r.gridResolution.y, r.gridResolution.z, r.shDegree, r.logPath.c_str(), secondsSince(t0));
 }
 
 }  // namespace
@@ -183,7 +160,7 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_flag("--quiet", o->quiet, "Print only the means");
   addRunOptions(cmd, o->run, [o] {
     const VoxelGrid grid = loadVoxelGrid(o->model);
-    const Dataset data = loadData(o->data);
+    const Dataset data = loadDataset(o->data.data, datasetOptions(o->data));
     std::vector<int> frames = data.test;
     if (o->all) {
       frames.clear();

@@ -1,12 +1,15 @@
-#include "fitting/fit_files.h"
+#include "fitting/fit_run.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "analysis/metrics.h"
+#include "core/error.h"
+#include "radiance/grid_io.h"
 
 namespace fs = std::filesystem;
 
@@ -19,6 +22,8 @@ std::vector<int> defaultStageStarts(int iterations, int stages) {
   return starts;
 }
 
+namespace {
+
 void writeTrainingLogHeader(std::ostream& csv) {
   csv << "iteration,loss,psnr_db,seconds,resolution_x,resolution_y,resolution_z,occupied_fraction,samples_per_ray\n";
 }
@@ -28,13 +33,47 @@ void writeTrainingLogRow(std::ostream& csv, const TrainProgress& p) {
       << ',' << p.res.z << ',' << p.occupiedFraction << ',' << p.samplesPerRay << '\n';
 }
 
-namespace {
 double mean(const std::vector<ViewScore>& v, double ViewScore::*m) {
   double s = 0;
   for (const auto& x : v) s += x.*m;
   return v.empty() ? 0.0 : s / double(v.size());
 }
 }  // namespace
+
+TrainingRunResult runTraining(const TrainingRunSettings& s) {
+  if (fs::path(s.modelPath).extension() != ".inimrf")
+    throw InputError("", "out", "\"" + s.modelPath + "\"", "a model file name ending in .inimrf");
+  TrainingRunResult r;
+  r.logPath = s.logPath.empty() ? fs::path(s.modelPath).replace_extension(".csv").string() : s.logPath;
+  const Dataset data = loadDataset(s.dataPath, s.data);
+  TrainConfig cfg = s.config;
+  cfg.boxLo = Point3(data.sceneBox.lo), cfg.boxHi = Point3(data.sceneBox.hi);
+  cfg.background = Vec3(data.background);
+  const TrainingRays rays = datasetRays(data, data.train);
+  if (s.loaded) s.loaded(data);
+
+  OutputSet outputs;
+  const std::string modelTmp = outputs.add(s.modelPath), logTmp = outputs.add(r.logPath);
+  std::ofstream csv(logTmp);
+  writeTrainingLogHeader(csv);
+  VoxelGrid grid;
+  r.stats = train(grid, rays, cfg, [&](const TrainProgress& p) {
+    writeTrainingLogRow(csv, p);
+    if (s.progress) s.progress(p);
+    return true;
+  });
+  csv.close();
+  if (!csv) throw std::runtime_error("cannot write " + r.logPath);
+  grid.metadata = modelMetadata(data);
+  saveVoxelGrid(grid, modelTmp);
+  const auto te = std::chrono::steady_clock::now();
+  r.heldOut = evaluate(grid, data, data.test, nullptr);
+  r.evalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - te).count();
+  outputs.commit();
+  r.gridResolution = grid.res;
+  r.shDegree = grid.shDegree;
+  return r;
+}
 
 double meanPsnr(const std::vector<ViewScore>& scores) { return mean(scores, &ViewScore::psnr); }
 double meanSsim(const std::vector<ViewScore>& scores) { return mean(scores, &ViewScore::ssim); }
