@@ -110,26 +110,6 @@ ViewSettings viewSettings(const ViewOpts& o) {
   return vs;
 }
 
-void printViewStats(const ViewSettings& vs, const ViewResult& r, double total, double loadSeconds) {
-  std::printf("rendered:    %d spp, %s wavelengths (%d ray%s per sample%s), %.2f s render, %.2f s total "
-              "(loading %.2f s)\n",
-              vs.spp, spectralSamplingName(vs.spectral), r.stats.raysPerSample, r.stats.raysPerSample > 1 ? "s" : "",
-              r.stats.dispersive ? ", dispersive" : "", r.stats.seconds, total, loadSeconds);
-  std::printf("rays:        %llu traced, %llu on the display, %llu reached the panel, %llu on a subpixel; %llu "
-              "pixels skipped (their tiles cannot see the display)\n",
-              (unsigned long long)r.stats.tracedRays, (unsigned long long)r.stats.displayRays,
-              (unsigned long long)r.stats.panelRays, (unsigned long long)r.stats.emittingRays,
-              (unsigned long long)r.stats.culledPixels);
-  if (vs.panelEstimator == PanelEstimator::Quadrature)
-    std::printf("estimator:   quadrature: %llu pixel pieces integrated (%llu strata cut by a lenslet border), "
-                "%llu pieces x primaries lost by the MLA, %llu fallbacks, %llu table/Jacobian rays\n",
-                (unsigned long long)r.stats.quadratureParts, (unsigned long long)r.stats.splitStrata,
-                (unsigned long long)r.stats.lostParts, (unsigned long long)r.stats.apertureFallbacks,
-                (unsigned long long)r.stats.apertureRays);
-  else
-    std::printf("estimator:   %s\n", panelEstimatorName(vs.panelEstimator));
-}
-
 void runViewCommand(const ViewOpts& o) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string ext = lowerExtension(o.eia);
@@ -161,7 +141,7 @@ void runViewCommand(const ViewOpts& o) {
                  "area; the image shows only the background\n",
                  r.camera.pose.describe().c_str());
   if (o.cam.quiet) return;
-  printViewStats(s.view, r.render, secondsSince(t0), r.loadSeconds);
+  std::printf("%s", summaryText(r, s.view, secondsSince(t0)).c_str());
   printWritten(r.exposureFactor, r.camera, o.cam.s.out);
 }
 

@@ -2,12 +2,9 @@
 
 #include <cmath>
 #include <map>
-#include <memory>
 
 #include "core/format.h"
 #include "core/parallel.h"
-#include "core/progress.h"
-#include "mla/real_mla.h"
 
 namespace inim::cli {
 
@@ -36,26 +33,12 @@ LayoutOverride layoutOverride(const DisplayArgs& a, const RunFile* run) {
   return lo;
 }
 
-EiLayout loadDisplayLayout(const DisplayArgs& a, Display& d) {
-  d = loadDisplay(displayPathOrDefault(a.display));
-  return applyLayoutOverride(d, layoutOverride(a));
-}
-
-double checkedGap(double gapMm, const std::string& shown) {
-  if (!(gapMm > 0.0) || !std::isfinite(gapMm)) throw InputError("", "--gap-mm", shown, "a gap > 0 mm");
-  return gapMm;
-}
-
 void addPlacementOptions(CLI::App* cmd, PlacementArgs& a) {
   cmd->add_option("--scale", a.scale,
                   "Placement scale, display mm per field unit: S or sx,sy,sz (analytic scenes are in mm: 1; the "
                   "paper's NeRF at 0.0075 units/mm: 133.33)");
   cmd->add_option("--rotate-deg", a.rotate, "Placement rotation rx,ry,rz (x, then y, then z), degrees");
   cmd->add_option("--translate-mm", a.translate, "Placement translation x,y,z in mm (applied last)");
-}
-
-bool anyPlacementGiven(const PlacementArgs& a) {
-  return !a.scale.empty() || !a.rotate.empty() || !a.translate.empty();
 }
 
 PlacementOverride placementOverride(const PlacementArgs& a) {
@@ -95,7 +78,7 @@ std::string flagForSetting(const std::string& key) {
   static const std::map<std::string, std::string> kFlags = {
       {"spp", "--spp"}, {"seed", "--seed"}, {"threads", "--threads"}, {"out", "--out"}, {"png", "--png"},
       {"preview", "--preview"}, {"sdf", "--sdf"}, {"eia", "--eia"},
-      {"in", "--in"}, {"ei", "--ei"},
+      {"in", "--in"}, {"ei", "--ei"}, {"flux_scale", "--flux-scale"},
       {"width", "--width"}, {"height", "--height"}, {"width/height", "--width/--height"},
       {"field", "--field"}, {"scene", "--scene"}, {"field_model", "--field-model"},
       {"display", "--display"}, {"layout", "--layout"}, {"viewing_distance_mm", "--viewing-distance-mm"},

@@ -1,6 +1,6 @@
 #pragma once
 // Option groups that several commands share, declared once: run options (seed, threads),
-// the display and its EI layout, placement, real-lens rays, output names; the rule "an option
+// the display and its EI layout, placement, real-lens rays; the rule "an option
 // given on the command line, else the run file's value, else the default"; and the table that
 // names a library setting by its flag when an error is printed.
 #include <CLI/CLI.hpp>
@@ -10,8 +10,6 @@
 #include <string>
 
 #include "core/error.h"
-#include "display/display.h"
-#include "display/ei_layout.h"
 #include "field/placement.h"
 #include "mla/real_lens_rays.h"
 #include "synthesis/display_overrides.h"
@@ -43,18 +41,12 @@ struct DisplayArgs {
 void addDisplayOptions(CLI::App* cmd, DisplayArgs& a);
 // The layout options given on the command line, else the run file's.
 LayoutOverride layoutOverride(const DisplayArgs& a, const RunFile* run = nullptr);
-// Loads the display (the default when --display is absent) into `d` and returns its EI layout
-// with the layout options applied.
-EiLayout loadDisplayLayout(const DisplayArgs& a, Display& d);
-// A --gap-mm value, checked: InputError naming the option unless > 0 and finite.
-double checkedGap(double gapMm, const std::string& shown);
 
 // --scale, --rotate-deg, --translate-mm.
 struct PlacementArgs {
   std::string scale, rotate, translate;
 };
 void addPlacementOptions(CLI::App* cmd, PlacementArgs& a);
-bool anyPlacementGiven(const PlacementArgs& a);
 PlacementOverride placementOverride(const PlacementArgs& a);
 
 // --real-lens, --real-lens-ray, --wavelength-nm.
@@ -67,6 +59,7 @@ struct RealLensArgs {
 void addRealLensOptions(CLI::App* cmd, RealLensArgs& a, const std::string& help);
 // The options checked (InputError naming the option when one is given without --real-lens).
 RealLensRayOptions realLensRayOptions(const RealLensArgs& a);
+
 // The flag that sets a library setting ("spp" -> "--spp", "vcp_mm" -> "--vcp-mm"); a key that
 // no flag sets is returned as it is.
 std::string flagForSetting(const std::string& key);

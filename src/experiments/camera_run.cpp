@@ -1,6 +1,7 @@
 #include "experiments/camera_run.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <future>
 
@@ -92,6 +93,32 @@ ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const V
   r.render = renderView(*r.camera.camera, r.camera.desc.sensor, *dm.mla, *dm.panel, dm.area, s.view);
   r.exposureFactor = writeExposed(r.render.image, r.camera, s.camera.out);
   return r;
+}
+
+std::string summaryText(const ViewRunResult& run, const ViewSettings& vs, double totalSeconds) {
+  const ViewStats& st = run.render.stats;
+  char buf[3][400];
+  std::snprintf(buf[0], sizeof buf[0],
+                "rendered:    %d spp, %s wavelengths (%d ray%s per sample%s), %.2f s render, %.2f s total "
+                "(loading %.2f s)\n",
+                vs.spp, spectralSamplingName(vs.spectral), st.raysPerSample, st.raysPerSample > 1 ? "s" : "",
+                st.dispersive ? ", dispersive" : "", st.seconds, totalSeconds, run.loadSeconds);
+  std::snprintf(buf[1], sizeof buf[1],
+                "rays:        %llu traced, %llu on the display, %llu reached the panel, %llu on a subpixel; %llu "
+                "pixels skipped (their tiles cannot see the display)\n",
+                (unsigned long long)st.tracedRays, (unsigned long long)st.displayRays,
+                (unsigned long long)st.panelRays, (unsigned long long)st.emittingRays,
+                (unsigned long long)st.culledPixels);
+  if (vs.panelEstimator == PanelEstimator::Quadrature)
+    std::snprintf(buf[2], sizeof buf[2],
+                  "estimator:   quadrature: %llu pixel pieces integrated (%llu strata cut by a lenslet border), "
+                  "%llu pieces x primaries lost by the MLA, %llu fallbacks, %llu table/Jacobian rays\n",
+                  (unsigned long long)st.quadratureParts, (unsigned long long)st.splitStrata,
+                  (unsigned long long)st.lostParts, (unsigned long long)st.apertureFallbacks,
+                  (unsigned long long)st.apertureRays);
+  else
+    std::snprintf(buf[2], sizeof buf[2], "estimator:   %s\n", panelEstimatorName(vs.panelEstimator));
+  return std::string(buf[0]) + buf[1] + buf[2];
 }
 
 ReferenceRunResult runReference(const ReferenceRunSettings& s,

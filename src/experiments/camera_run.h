@@ -70,6 +70,8 @@ struct ViewRunResult {
 
 // `loaded` (optional) is called when everything is loaded, before the render.
 ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded = {});
+// The render's lines as `inim view` prints them: samples and time, rays, the estimator's counts.
+std::string summaryText(const ViewRunResult& r, const ViewSettings& view, double totalSeconds);
 
 struct ReferenceRunSettings {
   CameraRunSettings camera;
