@@ -72,36 +72,6 @@ EiaRunSettings eiaRunSettings(const EiaOpts& o, const RunFile& run) {
   return e;
 }
 
-void printSetup(const EiaRunResult& r, double vcpMm) {
-  const Display& d = r.display;
-  const EiLayout& L = r.layout;
-  if (L.isHex())
-    std::printf("display:     %s (%s layout, hex lattice: %d rows of %d EIs, %d px across the flats, g = %s mm; "
-                "panel %d x %d px)\n",
-                d.name.c_str(), layoutName(L.kind), L.eiRows, L.eiCols, d.eiWidthPx, formatNumber(L.gapMm).c_str(),
-                L.panelW, L.panelH);
-  else
-    std::printf("display:     %s (%s layout, %d x %d EIs of %d x %d px, g = %s mm; panel %d x %d px)\n",
-                d.name.c_str(), layoutName(L.kind), L.eiCols, L.eiRows, L.eiW, L.eiH, formatNumber(L.gapMm).c_str(),
-                L.panelW, L.panelH);
-  std::printf("field:       %s (%s)\n", r.fieldPath.c_str(), fieldKindName(r.fieldKind));
-  std::printf("placement:   %s; VCP at z = %s mm\n", r.placement.describe().c_str(), formatNumber(vcpMm).c_str());
-  if (!r.realLensSummary.empty()) std::printf("rays:        %s\n", r.realLensSummary.c_str());
-  std::fflush(stdout);
-}
-
-// The synthesis summary without its warnings (they went to stderr already).
-void printSummary(const SynthesisResult& r, GamutMapping gamut) {
-  const std::string summary = summaryText(r.stats, gamut);
-  size_t pos = 0;
-  while (pos < summary.size()) {
-    const size_t nl = summary.find('\n', pos);
-    const std::string line = summary.substr(pos, nl == std::string::npos ? std::string::npos : nl - pos + 1);
-    if (line.rfind("warning:", 0) != 0) std::printf("%s", line.c_str());
-    pos = nl == std::string::npos ? summary.size() : nl + 1;
-  }
-}
-
 double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
@@ -155,22 +125,14 @@ void addEiaCommand(CLI::App& app) {
     const RunFile run = o->run.empty() ? RunFile{} : loadRunFile(o->run);
     const EiaRunSettings s = eiaRunSettings(*o, run);
     const EiaRunResult r = runEia(s, [&](const EiaRunResult& loaded) {
-      if (!o->quiet) printSetup(loaded, s.synthesis.vcpMm);
+      if (o->quiet) return;
+      std::printf("%s", setupText(loaded, s.synthesis.vcpMm).c_str());
+      std::fflush(stdout);
     });
     for (const auto& w : r.synthesis.stats.warnings) std::fprintf(stderr, "inim: warning: %s\n", w.c_str());
     if (o->quiet) return;
-    printSummary(r.synthesis, s.synthesis.gamut);
-    std::printf("wrote:       %s (%d x %d, %s), %s", o->out.c_str(), r.synthesis.eia.width, r.synthesis.eia.height,
-                s.synthesis.aovs ? "R G B A Z" : "R G B", r.png.c_str());
-    const PreviewResult& pv = r.preview;
-    if (!o->preview.empty())
-      std::printf(", %s (%d lenslets: %d real, %d virtual, %d on the MLA plane, %d missed; scene crosses the MLA at %d)",
-                  o->preview.c_str(), pv.lenslets, pv.real, pv.virtualHits, pv.onPlane, pv.missed, pv.crossingLenslets);
-    const TriadWavelengths& tw = r.triadWavelengths;
-    if (!o->sdf.empty())
-      std::printf(", %s (%llu triad rays at %s/%s/%s nm)", o->sdf.c_str(), (unsigned long long)r.triads,
-                  formatNumber(tw.nm[0]).c_str(), formatNumber(tw.nm[1]).c_str(), formatNumber(tw.nm[2]).c_str());
-    std::printf("\ntotal:       %.2f s (loading %.2f s, synthesis %.2f s, writing %.2f s)\n", secondsSince(t0),
+    std::printf("%s", summaryText(r, s).c_str());
+    std::printf("total:       %.2f s (loading %.2f s, synthesis %.2f s, writing %.2f s)\n", secondsSince(t0),
                 r.loadSeconds, r.synthesis.stats.seconds, r.writeSeconds);
   });
 }

@@ -1,6 +1,7 @@
 #include "experiments/eia_run.h"
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <future>
 
@@ -73,6 +74,14 @@ void writeOutputs(const EiaRunSettings& s, EiaRunResult& r, const Field& field, 
   outputs.commit();
 }
 
+// printf into a string.
+template <class... Args>
+std::string format(const char* fmt, Args... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, fmt, args...);
+  return buf;
+}
+
 double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
@@ -108,6 +117,46 @@ EiaRunResult runEia(const EiaRunSettings& s, const std::function<void(const EiaR
   writeOutputs(s, r, *field.field, s.realLens ? &realRays : nullptr);
   r.writeSeconds = secondsSince(tw0);
   return r;
+}
+
+std::string setupText(const EiaRunResult& r, double vcpMm) {
+  const Display& d = r.display;
+  const EiLayout& L = r.layout;
+  std::string t =
+      L.isHex() ? format("display:     %s (%s layout, hex lattice: %d rows of %d EIs, %d px across the flats, g = %s "
+                         "mm; panel %d x %d px)\n",
+                         d.name.c_str(), layoutName(L.kind), L.eiRows, L.eiCols, d.eiWidthPx,
+                         formatNumber(L.gapMm).c_str(), L.panelW, L.panelH)
+                : format("display:     %s (%s layout, %d x %d EIs of %d x %d px, g = %s mm; panel %d x %d px)\n",
+                         d.name.c_str(), layoutName(L.kind), L.eiCols, L.eiRows, L.eiW, L.eiH,
+                         formatNumber(L.gapMm).c_str(), L.panelW, L.panelH);
+  t += "field:       " + r.fieldPath + " (" + fieldKindName(r.fieldKind) + ")\n";
+  t += "placement:   " + r.placement.describe() + "; VCP at z = " + formatNumber(vcpMm) + " mm\n";
+  if (!r.realLensSummary.empty()) t += "rays:        " + r.realLensSummary + "\n";
+  return t;
+}
+
+std::string summaryText(const EiaRunResult& r, const EiaRunSettings& s) {
+  const std::string summary = summaryText(r.synthesis.stats, s.synthesis.gamut);
+  std::string t;
+  for (size_t pos = 0; pos < summary.size();) {
+    const size_t nl = summary.find('\n', pos);
+    const std::string line = summary.substr(pos, nl == std::string::npos ? std::string::npos : nl - pos + 1);
+    if (line.rfind("warning:", 0) != 0) t += line;
+    pos = nl == std::string::npos ? summary.size() : nl + 1;
+  }
+  const Image& eia = r.synthesis.eia;
+  t += format("wrote:       %s (%d x %d, %s), %s", s.out.c_str(), eia.width, eia.height,
+              s.synthesis.aovs ? "R G B A Z" : "R G B", r.png.c_str());
+  const PreviewResult& pv = r.preview;
+  if (!s.preview.empty())
+    t += format(", %s (%d lenslets: %d real, %d virtual, %d on the MLA plane, %d missed; scene crosses the MLA at %d)",
+                s.preview.c_str(), pv.lenslets, pv.real, pv.virtualHits, pv.onPlane, pv.missed, pv.crossingLenslets);
+  const TriadWavelengths& tw = r.triadWavelengths;
+  if (!s.sdf.empty())
+    t += format(", %s (%llu triad rays at %s/%s/%s nm)", s.sdf.c_str(), (unsigned long long)r.triads,
+                formatNumber(tw.nm[0]).c_str(), formatNumber(tw.nm[1]).c_str(), formatNumber(tw.nm[2]).c_str());
+  return t + "\n";
 }
 
 }  // namespace inim

@@ -54,4 +54,10 @@ struct EiaRunResult {
 // `loaded` (optional) is called when everything is loaded, before the synthesis.
 EiaRunResult runEia(const EiaRunSettings& s, const std::function<void(const EiaRunResult&)>& loaded = {});
 
+// What `inim eia` prints: the setup (display, field, placement, real-lens rays) once loaded,
+// and after the run the synthesis summary (its warnings left out: they go to stderr) and the
+// files written, each line ending in a newline.
+std::string setupText(const EiaRunResult& r, double vcpMm);
+std::string summaryText(const EiaRunResult& r, const EiaRunSettings& s);
+
 }  // namespace inim
