@@ -8,10 +8,8 @@
 
 #include "capture/capture.h"
 #include "cli/commands.h"
-#include "core/error.h"
-#include "core/parallel.h"
-#include "display/display.h"
-#include "display/ei_layout.h"
+#include "cli/options.h"
+#include "fields/field_factory.h"
 #include "scene/analytic_scene.h"
 #include "synthesis/eia_synthesis.h"
 
@@ -44,9 +42,7 @@ void addCaptureCommand(CLI::App& app) {
   cmd->add_option("--display", o->display, "Display whose area frames the default target (default: the paper's)");
   cmd->add_option("--radius-mm", o->radius, "Camera distance from the target centre (default: framing the target)");
   cmd->add_flag("--quiet", o->quiet, "Print nothing but warnings");
-  addRunOptions(cmd, o->run);
-  cmd->callback([o] {
-    ThreadLimit threads(o->run.threads);
+  addRunOptions(cmd, o->run, [o] {
     CaptureSettings s = o->s;
     s.seed = o->run.seed;
     s.progress = !o->quiet;

@@ -1,27 +1,16 @@
 // inim train / inim eval: a voxel-grid radiance field (src/radiance) from a posed photo
-// dataset (src/dataset), and its held-out quality. See src/radiance/trainer.h.
+// dataset (src/dataset), and its held-out quality. See src/radiance/trainer.h and
+// src/fitting/fit_run.h.
 #include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
-#include <nlohmann/json.hpp>
 
-#include "analysis/metrics.h"
 #include "cli/commands.h"
-#include "fitting/dataset_fit.h"
-#include "core/error.h"
-#include "core/image.h"
-#include "core/output_file.h"
-#include "core/parallel.h"
+#include "cli/options.h"
 #include "core/progress.h"
-#include "dataset/dataset.h"
+#include "fitting/fit_run.h"
 #include "radiance/grid_io.h"
-#include "radiance/trainer.h"
-
-namespace fs = std::filesystem;
 
 namespace inim::cli {
 
@@ -44,7 +33,7 @@ void addDataOptions(CLI::App* cmd, DataArgs& a) {
       ->capture_default_str();
 }
 
-Dataset loadData(const DataArgs& a) {
+DatasetOptions datasetOptions(const DataArgs& a) {
   DatasetOptions o;
   o.downscale = a.downscale;
   o.holdoutEvery = a.holdoutEvery;
@@ -54,7 +43,7 @@ Dataset loadData(const DataArgs& a) {
   if (!(glm::all(glm::greaterThanEqual(o.background, glm::vec3(0.0f))) &&
         glm::all(glm::lessThanEqual(o.background, glm::vec3(1.0f)))))
     throw InputError("", "--background", "\"" + a.background + "\"", "white, black or r,g,b in [0, 1]");
-  return loadDataset(a.data, o);
+  return o;
 }
 
 std::vector<int> parseIntList(const std::string& s, const std::string& key) {
@@ -73,24 +62,70 @@ std::vector<int> parseIntList(const std::string& s, const std::string& key) {
   return v;
 }
 
-double mean(const std::vector<ViewScore>& v, double ViewScore::*m) {
-  double s = 0;
-  for (const auto& x : v) s += x.*m;
-  return v.empty() ? 0.0 : s / double(v.size());
+double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+void printDataset(const Dataset& data) {
+  const int w = data.frames.empty() ? 0 : data.frames[0].image.width;
+  const int h = data.frames.empty() ? 0 : data.frames[0].image.height;
+  std::printf("dataset:     %s (%s): %zu frames (%zu train, %zu held out), %d x %d px\n", data.file.c_str(),
+              data.format.c_str(), data.frames.size(), data.train.size(), data.test.size(), w, h);
+  std::printf("scene box:   (%.4g, %.4g, %.4g) - (%.4g, %.4g, %.4g), near %.4g, far %.4g\n", data.sceneBox.lo.x,
+              data.sceneBox.lo.y, data.sceneBox.lo.z, data.sceneBox.hi.x, data.sceneBox.hi.y, data.sceneBox.hi.z,
+              data.nearPlane, data.farPlane);
+  std::fflush(stdout);
+}
+
+struct TrainOpts {
+  DataArgs data;
+  std::string out, log, resolutions = "64,128,160", stageStarts;
+  int iterations = 3000, batch = 4096, shDegree = 1;
+  double timeBudget = 0;
+  bool quiet = false;
+  RunOptions run;
+};
+
+void runTrain(const TrainOpts& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  TrainingRunSettings s;
+  s.dataPath = o.data.data;
+  s.modelPath = o.out;
+  s.logPath = o.log;
+  TrainConfig& cfg = s.config;
+  cfg.iterations = o.iterations;
+  cfg.batchSize = o.batch;
+  cfg.shDegree = o.shDegree;
+  cfg.timeBudgetSeconds = o.timeBudget;
+  cfg.seed = o.run.seed;
+  cfg.resolutions = parseIntList(o.resolutions, "--resolutions");
+  cfg.stageStarts = o.stageStarts.empty() ? defaultStageStarts(o.iterations, int(cfg.resolutions.size()))
+                                          : parseIntList(o.stageStarts, "--stage-starts");
+  s.data = datasetOptions(o.data);
+  if (!o.quiet) s.loaded = printDataset;
+  if (!o.quiet && ProgressBar::stderrIsTerminal())
+    s.progress = [](const TrainProgress& p) {
+      std::fprintf(stderr, "\rtrain  iteration %d/%d  loss %.5f  PSNR %.2f dB  grid %dx%dx%d  %.0f s   ", p.iteration,
+                   p.iterations, p.loss, p.psnr, p.res.x, p.res.y, p.res.z, p.elapsedSeconds);
+      std::fflush(stderr);
+    };
+  const TrainingRunResult r = runTraining(s);
+  if (s.progress) std::fprintf(stderr, "\n");
+  if (o.quiet) return;
+  const TrainStats& st = r.stats;
+  std::printf("trained:     %d iterations of %d rays in %.1f s (last batch: loss %.5f, PSNR %.2f dB)%s\n", st.iterations,
+              cfg.batchSize, st.seconds, st.loss, st.psnr, st.stoppedEarly ? ", stopped early" : "");
+  if (!r.heldOut.empty())
+    std::printf("held out:    %zu views, PSNR %.2f dB, SSIM %.4f (rendered in %.1f s)\n", r.heldOut.size(),
+                meanPsnr(r.heldOut), meanSsim(r.heldOut), r.evalSeconds);
+  std::printf("wrote:       %s (grid %dx%dx%d, SH degree %d), %s; total %.1f s\n", o.out.c_str(), r.gridResolution.x,
+              r.gridResolution.y, r.gridResolution.z, r.shDegree, r.logPath.c_str(), secondsSince(t0));
 }
 
 }  // namespace
 
 void addTrainCommand(CLI::App& app) {
-  struct Opts {
-    DataArgs data;
-    std::string out, log, resolutions = "64,128,160", stageStarts;
-    int iterations = 3000, batch = 4096, shDegree = 1;
-    double timeBudget = 0;
-    bool quiet = false;
-    RunOptions run;
-  };
-  auto o = std::make_shared<Opts>();
+  auto o = std::make_shared<TrainOpts>();
   auto* cmd = app.add_subcommand(
       "train", "Train a voxel-grid radiance field (density + spherical-harmonic colour, Adam, TV, coarse to fine) "
                "from a posed photo dataset, on the CPU");
@@ -106,83 +141,7 @@ void addTrainCommand(CLI::App& app) {
   cmd->add_option("--stage-starts", o->stageStarts,
                   "Iteration at which each stage starts (default: 0, then 1/6 and 1/2 of the iterations)");
   cmd->add_flag("--quiet", o->quiet, "Print nothing but warnings");
-  addRunOptions(cmd, o->run);
-
-  cmd->callback([o] {
-    ThreadLimit threads(o->run.threads);
-    const auto t0 = std::chrono::steady_clock::now();
-    if (fs::path(o->out).extension() != ".inimrf")
-      throw InputError("", "--out", "\"" + o->out + "\"", "a model file name ending in .inimrf");
-    const std::string log = o->log.empty() ? fs::path(o->out).replace_extension(".csv").string() : o->log;
-    TrainConfig cfg;
-    cfg.iterations = o->iterations;
-    cfg.batchSize = o->batch;
-    cfg.shDegree = o->shDegree;
-    cfg.timeBudgetSeconds = o->timeBudget;
-    cfg.seed = o->run.seed;
-    cfg.resolutions = parseIntList(o->resolutions, "--resolutions");
-    if (!o->stageStarts.empty()) {
-      cfg.stageStarts = parseIntList(o->stageStarts, "--stage-starts");
-    } else {
-      // Three stages: 0, 1/6 and 1/2 of the iterations; other counts: evenly over the first half.
-      const int n = int(cfg.resolutions.size());
-      cfg.stageStarts.assign(size_t(n), 0);
-      if (n == 3) cfg.stageStarts = {0, o->iterations / 6, o->iterations / 2};
-      else
-        for (int s = 1; s < n; ++s) cfg.stageStarts[size_t(s)] = o->iterations * s / (2 * (n - 1));
-    }
-
-    Dataset data = loadData(o->data);
-    cfg.boxLo = Point3(data.sceneBox.lo), cfg.boxHi = Point3(data.sceneBox.hi);
-    cfg.background = Vec3(data.background);
-    const TrainingRays rays = datasetRays(data, data.train);
-    const bool terminal = !o->quiet && ProgressBar::stderrIsTerminal();
-    if (!o->quiet) {
-      std::printf("dataset:     %s (%s): %zu frames (%zu train, %zu held out), %d x %d px\n", data.file.c_str(),
-                  data.format.c_str(), data.frames.size(), data.train.size(), data.test.size(),
-                  data.frames.empty() ? 0 : data.frames[0].image.width,
-                  data.frames.empty() ? 0 : data.frames[0].image.height);
-      std::printf("scene box:   (%.4g, %.4g, %.4g) - (%.4g, %.4g, %.4g), near %.4g, far %.4g\n", data.sceneBox.lo.x,
-                  data.sceneBox.lo.y, data.sceneBox.lo.z, data.sceneBox.hi.x, data.sceneBox.hi.y, data.sceneBox.hi.z,
-                  data.nearPlane, data.farPlane);
-      std::fflush(stdout);
-    }
-
-    OutputSet outputs;
-    const std::string modelTmp = outputs.add(o->out), logTmp = outputs.add(log);
-    std::ofstream csv(logTmp);
-    csv << "iteration,loss,psnr_db,seconds,resolution_x,resolution_y,resolution_z,occupied_fraction,samples_per_ray\n";
-    VoxelGrid grid;
-    TrainStats st = train(grid, rays, cfg, [&](const TrainProgress& p) {
-      csv << p.iteration << ',' << p.loss << ',' << p.psnr << ',' << p.elapsedSeconds << ',' << p.res.x << ','
-          << p.res.y << ',' << p.res.z << ',' << p.occupiedFraction << ',' << p.samplesPerRay << '\n';
-      if (terminal) {
-        std::fprintf(stderr, "\rtrain  iteration %d/%d  loss %.5f  PSNR %.2f dB  grid %dx%dx%d  %.0f s   ",
-                     p.iteration, p.iterations, p.loss, p.psnr, p.res.x, p.res.y, p.res.z, p.elapsedSeconds);
-        std::fflush(stderr);
-      }
-      return true;
-    });
-    if (terminal) std::fprintf(stderr, "\n");
-    csv.close();
-    if (!csv) throw std::runtime_error("cannot write " + log);
-    grid.metadata = modelMetadata(data);
-    saveVoxelGrid(grid, modelTmp);
-    const auto te = std::chrono::steady_clock::now();
-    std::vector<ViewScore> scores = evaluate(grid, data, data.test, nullptr);
-    const double evalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - te).count();
-    outputs.commit();
-    if (!o->quiet) {
-      std::printf("trained:     %d iterations of %d rays in %.1f s (last batch: loss %.5f, PSNR %.2f dB)%s\n",
-                  st.iterations, cfg.batchSize, st.seconds, st.loss, st.psnr, st.stoppedEarly ? ", stopped early" : "");
-      if (!scores.empty())
-        std::printf("held out:    %zu views, PSNR %.2f dB, SSIM %.4f (rendered in %.1f s)\n", scores.size(),
-                    mean(scores, &ViewScore::psnr), mean(scores, &ViewScore::ssim), evalSeconds);
-      const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::printf("wrote:       %s (grid %dx%dx%d, SH degree %d), %s; total %.1f s\n", o->out.c_str(), grid.res.x,
-                  grid.res.y, grid.res.z, grid.shDegree, log.c_str(), total);
-    }
-  });
+  addRunOptions(cmd, o->run, [o] { runTrain(*o); });
 }
 
 void addEvalCommand(CLI::App& app) {
@@ -199,11 +158,9 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_option("--out", o->out, "Folder for the rendered views (PNG, beside the photos) and metrics.json/.csv");
   cmd->add_flag("--all", o->all, "Evaluate every frame, not only the held-out ones");
   cmd->add_flag("--quiet", o->quiet, "Print only the means");
-  addRunOptions(cmd, o->run);
-  cmd->callback([o] {
-    ThreadLimit threads(o->run.threads);
-    VoxelGrid grid = loadVoxelGrid(o->model);
-    Dataset data = loadData(o->data);
+  addRunOptions(cmd, o->run, [o] {
+    const VoxelGrid grid = loadVoxelGrid(o->model);
+    const Dataset data = loadDataset(o->data.data, datasetOptions(o->data));
     std::vector<int> frames = data.test;
     if (o->all) {
       frames.clear();
@@ -214,36 +171,18 @@ void addEvalCommand(CLI::App& app) {
                        "a split that holds out at least one frame (or --all)");
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<Image> renders;
-    std::vector<ViewScore> scores = evaluate(grid, data, frames, o->out.empty() ? nullptr : &renders);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::vector<ViewScore> scores = evaluate(grid, data, frames, o->out.empty() ? nullptr : &renders);
+    const double seconds = secondsSince(t0);
     if (!o->out.empty()) {
       OutputSet outputs;
-      nlohmann::json j = {{"model", o->model}, {"dataset", data.file}, {"views", nlohmann::json::array()}};
-      std::string csv = "frame,image,psnr_db,ssim\n";
-      for (size_t k = 0; k < scores.size(); ++k) {
-        char name[64];
-        std::snprintf(name, sizeof name, "view_%04d", scores[k].frame);
-        writeImage(renders[k], outputs.add((fs::path(o->out) / (std::string(name) + "_model.png")).string()));
-        writeImage(colorImage(data.frames[size_t(scores[k].frame)].image),
-                   outputs.add((fs::path(o->out) / (std::string(name) + "_photo.png")).string()));
-        j["views"].push_back({{"frame", scores[k].frame}, {"image", scores[k].image}, {"psnr_db", scores[k].psnr},
-                              {"ssim", scores[k].ssim}});
-        char line[512];
-        std::snprintf(line, sizeof line, "%d,%s,%.4f,%.5f\n", scores[k].frame, scores[k].image.c_str(), scores[k].psnr,
-                      scores[k].ssim);
-        csv += line;
-      }
-      j["mean_psnr_db"] = mean(scores, &ViewScore::psnr);
-      j["mean_ssim"] = mean(scores, &ViewScore::ssim);
-      std::ofstream(outputs.add((fs::path(o->out) / "metrics.json").string())) << j.dump(2) << "\n";
-      std::ofstream(outputs.add((fs::path(o->out) / "metrics.csv").string())) << csv;
+      writeEvaluation(o->out, o->model, data, scores, renders, outputs);
       outputs.commit();
     }
     if (!o->quiet)
       for (const auto& s : scores)
         std::printf("frame %4d  PSNR %6.2f dB  SSIM %.4f  %s\n", s.frame, s.psnr, s.ssim, s.image.c_str());
-    std::printf("mean over %zu views: PSNR %.2f dB, SSIM %.4f (%.1f s)\n", scores.size(), mean(scores, &ViewScore::psnr),
-                mean(scores, &ViewScore::ssim), seconds);
+    std::printf("mean over %zu views: PSNR %.2f dB, SSIM %.4f (%.1f s)\n", scores.size(), meanPsnr(scores),
+                meanSsim(scores), seconds);
   });
 }
 

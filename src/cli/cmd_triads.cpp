@@ -1,53 +1,22 @@
 // inim triads: the RGB-wavelength triads of an EIA as a Zemax SDF source file (export), and
 // an EIA formed from such a file on a detector at the panel plane (form), as the paper's NSC
-// step did. See src/triads/triads.h.
+// step did. The runs are src/experiments/triads_run.h.
 #include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 
-#include "core/format.h"
 #include "cli/commands.h"
-#include "core/error.h"
-#include "core/image.h"
-#include "core/output_file.h"
-#include "core/parallel.h"
-#include "core/progress.h"
-#include "display/display.h"
-#include "rays/pinhole_rays.h"
-#include "synthesis/display_overrides.h"
-#include "synthesis/eia_synthesis.h"
-#include "triads/sdf.h"
-#include "triads/triads.h"
-
-namespace fs = std::filesystem;
+#include "cli/options.h"
+#include "experiments/triads_run.h"
 
 namespace inim::cli {
 
-// Registered by main.cpp (declared in commands.h): inim triads export | form.
-void addTriadsCommand(CLI::App& app);
-
 namespace {
 
-struct DisplayOpts {
-  std::string display, layout;
-  double viewingDistanceMm = 0.0;
-  CLI::Option *layoutOpt = nullptr, *distOpt = nullptr;
-  void add(CLI::App* cmd) {
-    cmd->add_option("--display", display, "Display JSON (default: optics/displays/paper-prototype.json)");
-    layoutOpt = cmd->add_option("--layout", layout, "EI layout: parallel, toed-in or lens-grid");
-    distOpt = cmd->add_option("--viewing-distance-mm", viewingDistanceMm, "Viewing distance D for toed-in");
-  }
-  EiLayout load(Display& d) const {
-    d = loadDisplay(displayPathOrDefault(display));
-    LayoutOverride o;
-    if (layoutOpt->count()) o.layout = layout;
-    if (distOpt->count()) o.viewingDistanceMm = viewingDistanceMm;
-    return applyLayoutOverride(d, o);
-  }
-};
+double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
 
 }  // namespace
 
@@ -57,57 +26,36 @@ void addTriadsCommand(CLI::App& app) {
 
   // inim triads export
   struct ExportOpts {
-    DisplayOpts disp;
-    std::string eia, out, wavelengths = "panel";
-    float fluxScale = 1.0f;
-    bool skipZero = false, fluxSum = false;
+    DisplayArgs disp;
+    TriadExportSettings s;
     RunOptions run;
   };
   auto e = std::make_shared<ExportOpts>();
   auto* ex = triads->add_subcommand(
       "export", "EIA (EXR of drive values) -> 3 monochromatic rays per display ray, as a Zemax spectral SDF source file");
-  e->disp.add(ex);
-  ex->add_option("--eia", e->eia, "EIA EXR (panel or EIA size; the first three channels are R, G, B)")->required();
-  ex->add_option("--out", e->out, "Output .sdf")->required();
-  ex->add_option("--triad-wavelengths", e->wavelengths, "panel (default), paper, zemax-sequential or R,G,B in nm");
-  ex->add_option("--flux-scale", e->fluxScale, "Flux = drive value x this (default 1)");
-  ex->add_flag("--skip-zero", e->skipZero, "Leave out triad rays of flux 0 (the paper wrote them all)");
-  ex->add_flag("--flux-sum", e->fluxSum, "Header ray-set flux = sum of the ray fluxes (the paper wrote 1)");
-  addRunOptions(ex, e->run);
-  ex->callback([e] {
-    ThreadLimit threads(e->run.threads);
-    auto t0 = std::chrono::steady_clock::now();
-    if (lowerExtension(e->out) != ".sdf" && lowerExtension(e->out) != ".dat")
-      throw InputError("", "--out", "\"" + e->out + "\"", "a Zemax source file name (.sdf or .dat)");
-    if (!(e->fluxScale > 0.0f) || !std::isfinite(e->fluxScale))
-      throw InputError("", "--flux-scale", std::to_string(e->fluxScale), "a number > 0");
-    Display d;
-    EiLayout L = e->disp.load(d);
-    TriadWavelengths w = parseTriadWavelengths(d.panel, e->wavelengths);
-    Image img = readImage(e->eia);
-    Image area = eiaArea(L, img, e->eia);
-    std::vector<float> drive = driveFromEia(L, area);
-    RaySet rays = generatePinholeRays(L);
-    TriadOptions to;
-    to.fluxScale = e->fluxScale;
-    to.skipZeroFlux = e->skipZero;
-    to.raySetFluxIsSum = e->fluxSum;
-    to.description = "inim triads: " + d.name + ", " + w.source;
-    OutputSet outputs;
-    ProgressBar bar("triads", uint64_t(rays.size()) * 3);
-    uint64_t n = writeTriadSdf(outputs.add(e->out), rays, drive, w, to, &bar);
-    bar.finish();
-    outputs.commit();
-    double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  addDisplayOptions(ex, e->disp);
+  ex->add_option("--eia", e->s.eiaPath, "EIA EXR (panel or EIA size; the first three channels are R, G, B)")->required();
+  ex->add_option("--out", e->s.out, "Output .sdf")->required();
+  ex->add_option("--triad-wavelengths", e->s.wavelengths, "panel (default), paper, zemax-sequential or R,G,B in nm");
+  ex->add_option("--flux-scale", e->s.options.fluxScale, "Flux = drive value x this (default 1)");
+  ex->add_flag("--skip-zero", e->s.options.skipZeroFlux, "Leave out triad rays of flux 0 (the paper wrote them all)");
+  ex->add_flag("--flux-sum", e->s.options.raySetFluxIsSum,
+               "Header ray-set flux = sum of the ray fluxes (the paper wrote 1)");
+  addRunOptions(ex, e->run, [e] {
+    const auto t0 = std::chrono::steady_clock::now();
+    e->s.displayPath = e->disp.display;
+    e->s.layout = layoutOverride(e->disp);
+    const TriadExportResult r = exportTriads(e->s);
+    const TriadWavelengths& w = r.wavelengths;
     std::printf("wrote %llu triad rays (%llu display rays; %.6g/%.6g/%.6g nm, %s) to %s in %.2f s\n",
-                (unsigned long long)n, (unsigned long long)rays.size(), w.nm[0], w.nm[1], w.nm[2], w.source.c_str(),
-                e->out.c_str(), s);
+                (unsigned long long)r.triads, (unsigned long long)r.displayRays, w.nm[0], w.nm[1], w.nm[2],
+                w.source.c_str(), e->s.out.c_str(), secondsSince(t0));
   });
 
   // inim triads form
   struct FormOpts {
-    DisplayOpts disp;
-    std::string sdf, out, png, wavelengths = "panel";
+    DisplayArgs disp;
+    TriadFormSettings s;
     double gapMm = 0.0;
     CLI::Option* gapOpt = nullptr;
     RunOptions run;
@@ -116,44 +64,29 @@ void addTriadsCommand(CLI::App& app) {
   auto* fo = triads->add_subcommand(
       "form", "Zemax SDF triads -> EIA: straight propagation to a detector at the panel plane z = -g, flux binned per "
               "pixel and channel");
-  f->disp.add(fo);
-  fo->add_option("--sdf", f->sdf, "Zemax spectral source file (.sdf)")->required();
-  fo->add_option("--out", f->out, "Output EXR (panel resolution, channels R, G, B: summed flux)")->required();
-  fo->add_option("--png", f->png, "Also an encoded PNG (the panel's EOTF)");
-  fo->add_option("--triad-wavelengths", f->wavelengths,
+  addDisplayOptions(fo, f->disp);
+  fo->add_option("--sdf", f->s.sdfPath, "Zemax spectral source file (.sdf)")->required();
+  fo->add_option("--out", f->s.out, "Output EXR (panel resolution, channels R, G, B: summed flux)")->required();
+  fo->add_option("--png", f->s.png, "Also an encoded PNG (the panel's EOTF)");
+  fo->add_option("--triad-wavelengths", f->s.wavelengths,
                  "Channels of the wavelengths: panel (default), paper, zemax-sequential or R,G,B in nm");
   f->gapOpt = fo->add_option("--gap-mm", f->gapMm, "Detector at z = -G (default: the display's generation gap)");
-  addRunOptions(fo, f->run);
-  fo->callback([f] {
-    ThreadLimit threads(f->run.threads);
-    auto t0 = std::chrono::steady_clock::now();
-    if (lowerExtension(f->out) != ".exr") throw InputError("", "--out", "\"" + f->out + "\"", "an OpenEXR file name (.exr)");
-    if (!f->png.empty() && lowerExtension(f->png) != ".png")
-      throw InputError("", "--png", "\"" + f->png + "\"", "a PNG file name (.png)");
-    Display d;
-    EiLayout L = f->disp.load(d);
-    if (f->gapOpt->count()) {
-      if (!(f->gapMm > 0.0) || !std::isfinite(f->gapMm))
-        throw InputError("", "--gap-mm", std::to_string(f->gapMm), "a gap > 0 mm");
-      L = L.withGap(f->gapMm);
-    }
-    TriadWavelengths w = parseTriadWavelengths(d.panel, f->wavelengths);
-    EiaFormation formed = formEiaFromSdf(L, f->sdf, w);
-    Image eia = onPanel(L, formed.eia);
-    OutputSet outputs;
-    writeImage(eia, outputs.add(f->out));
-    if (!f->png.empty()) writeImage(encodeForPanel(eia, d.panel.eotf), outputs.add(f->png));
-    outputs.commit();
-    double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  addRunOptions(fo, f->run, [f] {
+    const auto t0 = std::chrono::steady_clock::now();
+    f->s.displayPath = f->disp.display;
+    f->s.layout = layoutOverride(f->disp);
+    if (f->gapOpt->count()) f->s.gapMm = f->gapMm;
+    const TriadFormResult r = formTriads(f->s);
     std::printf("formed %s (%d x %d) from %s: %llu rays binned, %llu missed the detector, %llu of unknown wavelength, "
                 "in %.2f s\n",
-                f->out.c_str(), eia.width, eia.height, f->sdf.c_str(), (unsigned long long)formed.binned,
-                (unsigned long long)formed.missed, (unsigned long long)formed.unknownWavelength, s);
-    if (formed.unknownWavelength)
+                f->s.out.c_str(), r.width, r.height, f->s.sdfPath.c_str(), (unsigned long long)r.binned,
+                (unsigned long long)r.missed, (unsigned long long)r.unknownWavelength, secondsSince(t0));
+    if (r.unknownWavelength)
       std::fprintf(stderr,
                    "inim: warning: %llu rays have none of the triad wavelengths %.6g/%.6g/%.6g nm (within 0.5 nm); "
                    "check --triad-wavelengths\n",
-                   (unsigned long long)formed.unknownWavelength, w.nm[0], w.nm[1], w.nm[2]);
+                   (unsigned long long)r.unknownWavelength, r.wavelengths.nm[0], r.wavelengths.nm[1],
+                   r.wavelengths.nm[2]);
   });
 }
 

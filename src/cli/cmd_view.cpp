@@ -1,37 +1,17 @@
 // inim view: what a camera sees when the display shows an EIA (spectral Monte Carlo through the
 // camera lens, the MLA and the panel's subpixels; src/view/view_renderer.h).
 // inim reference: the same camera and pose looking at the scene itself, at the placement the
-// EIA was made with (src/view/reference_renderer.h).
-// Both write linear camera RGB (x exposure) as EXR and an sRGB PNG beside it.
+// EIA was made with (src/view/reference_renderer.h). Both run in src/experiments/camera_run.h.
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <future>
 #include <memory>
 #include <string>
 
-#include "core/format.h"
-#include "camera/camera_config.h"
 #include "cli/commands.h"
-#include "cli/scene_options.h"
-#include "core/error.h"
-#include "core/image.h"
-#include "core/output_file.h"
-#include "core/parallel.h"
-#include "display/display.h"
-#include "scene/analytic_scene.h"
-#include "synthesis/display_overrides.h"
-#include "synthesis/placement.h"
-#include "view/display_model.h"
-#include "view/display_pose.h"
-#include "view/panel_emitter.h"
-#include "view/reference_renderer.h"
-#include "view/view_camera.h"
-#include "view/view_image.h"
-#include "view/view_renderer.h"
-
-namespace fs = std::filesystem;
+#include "cli/options.h"
+#include "core/format.h"
+#include "experiments/camera_run.h"
 
 namespace inim::cli {
 
@@ -39,91 +19,50 @@ namespace {
 
 // Options shared by `view` and `reference`: camera, pose, image size, samples, outputs.
 struct CameraPoseOpts {
-  std::string camera, cameraModel, exposure = "auto", out, png;
-  double distanceMm = 0.0, rotH = 0.0, rotV = 0.0, focusMm = 0.0;
-  int width = 0, height = 0, spp = 16;
+  CameraRunSettings s;
+  std::string cameraModel;
+  double distanceMm = 0.0;
+  int spp = 16;
   bool quiet = false;
   RunOptions run;
-  CLI::Option* distanceOpt = nullptr;
+  CLI::Option *distanceOpt = nullptr, *sppOpt = nullptr;
+  // The settings with the options that need their own parsing applied.
+  CameraRunSettings settings() const {
+    CameraRunSettings c = s;
+    if (!cameraModel.empty())
+      c.model = cameraModel == "pinhole"     ? CameraModelKind::Pinhole
+                : cameraModel == "thin-lens" ? CameraModelKind::ThinLens
+                                             : CameraModelKind::RealLens;
+    if (distanceOpt->count()) c.distanceMm = distanceMm;
+    return c;
+  }
 };
 
 void addCameraPoseOptions(CLI::App* cmd, CameraPoseOpts& o) {
-  cmd->add_option("--camera", o.camera,
-                  "Camera: a name in optics/cameras/ or a JSON file (default: alvium-1800-u-500c)");
+  cmd->add_option("--camera", o.s.camera, "Camera: a name in optics/cameras/ or a JSON file (default: alvium-1800-u-500c)");
   cmd->add_option("--camera-model", o.cameraModel, "real-lens, thin-lens or pinhole (default: the camera file's)")
       ->check(CLI::IsMember({"real-lens", "thin-lens", "pinhole"}));
   o.distanceOpt = cmd->add_option("--distance-mm", o.distanceMm,
                                   "Camera (entrance pupil) to display centre, mm (default: the camera file's distance_mm)");
-  cmd->add_option("--rot-h-deg", o.rotH,
+  cmd->add_option("--rot-h-deg", o.s.rotHDeg,
                   "Display rotation about its vertical axis, degrees; + turns its right edge away from the camera")
       ->capture_default_str();
-  cmd->add_option("--rot-v-deg", o.rotV,
+  cmd->add_option("--rot-v-deg", o.s.rotVDeg,
                   "Display rotation about its horizontal axis, degrees; + turns its top edge away from the camera")
       ->capture_default_str();
-  cmd->add_option("--focus-mm", o.focusMm, "Focus distance from the entrance pupil, mm (default: the camera distance, "
-                                           "i.e. the MLA plane)");
-  cmd->add_option("--width", o.width, "Image width in pixels (default: the sensor's; a smaller width keeps the field of "
-                                      "view and scales the pixel pitch)");
-  cmd->add_option("--height", o.height, "Image height in pixels (default: the sensor's aspect ratio)");
-  cmd->add_option("--spp", o.spp, "Samples per pixel")->capture_default_str();
-  cmd->add_option("--exposure", o.exposure,
+  cmd->add_option("--focus-mm", o.s.focusMm, "Focus distance from the entrance pupil, mm (default: the camera "
+                                             "distance, i.e. the MLA plane)");
+  cmd->add_option("--width", o.s.width, "Image width in pixels (default: the sensor's; a smaller width keeps the field "
+                                        "of view and scales the pixel pitch)");
+  cmd->add_option("--height", o.s.height, "Image height in pixels (default: the sensor's aspect ratio)");
+  o.sppOpt = cmd->add_option("--spp", o.spp, "Samples per pixel")->capture_default_str();
+  cmd->add_option("--exposure", o.s.exposure,
                   "Exposure factor applied to the EXR and the PNG, or auto (99th percentile of the brightest channel "
                   "-> 0.9)")
       ->capture_default_str();
-  cmd->add_option("--out", o.out, "Output EXR: linear, white-balanced camera RGB x exposure")->required();
-  cmd->add_option("--png", o.png, "sRGB PNG (default: beside --out, same name, .png)");
+  cmd->add_option("--out", o.s.out, "Output EXR: linear, white-balanced camera RGB x exposure")->required();
+  cmd->add_option("--png", o.s.png, "sRGB PNG (default: beside --out, same name, .png)");
   cmd->add_flag("--quiet", o.quiet, "Print nothing but warnings");
-  addRunOptions(cmd, o.run);
-}
-
-struct CameraSetup {
-  CameraDescription desc;
-  DisplayPose pose;
-  std::unique_ptr<CameraModel> camera;
-  Exposure exposure;
-  std::string png;
-};
-
-CameraSetup setupCamera(const CameraPoseOpts& o) {
-  if (o.spp < 1) throw InputError("", "--spp", std::to_string(o.spp), "a whole number >= 1");
-  if (lowerExtension(o.out) != ".exr") throw InputError("", "--out", "\"" + o.out + "\"", "an OpenEXR file name (.exr)");
-  CameraSetup s;
-  s.png = o.png.empty() ? fs::path(o.out).replace_extension(".png").string() : o.png;
-  if (lowerExtension(s.png) != ".png") throw InputError("", "--png", "\"" + s.png + "\"", "a PNG file name (.png)");
-  s.exposure = parseExposure(o.exposure);
-  if (o.width < 0) throw InputError("", "--width", std::to_string(o.width), "a whole number of pixels >= 1");
-  if (o.height < 0) throw InputError("", "--height", std::to_string(o.height), "a whole number of pixels >= 1");
-  s.desc = loadCameraDescription(o.camera.empty() ? defaultCameraPath() : o.camera);
-  s.pose.rotHDeg = o.rotH;
-  s.pose.rotVDeg = o.rotV;
-  s.pose.distanceMm = o.distanceOpt->count() ? o.distanceMm : s.desc.distanceMm;
-  if (!(s.pose.distanceMm > 0.0) || !std::isfinite(s.pose.distanceMm))
-    throw InputError("", "--distance-mm", formatNumber(s.pose.distanceMm), "a camera distance > 0 mm");
-  ViewCameraOptions co;
-  if (!o.cameraModel.empty())
-    co.kind = o.cameraModel == "pinhole" ? CameraModelKind::Pinhole
-              : o.cameraModel == "thin-lens" ? CameraModelKind::ThinLens
-                                             : CameraModelKind::RealLens;
-  co.width = o.width;
-  co.height = o.height;
-  co.focusMm = o.focusMm;
-  if (o.focusMm < 0.0 || !std::isfinite(o.focusMm))
-    throw InputError("", "--focus-mm", formatNumber(o.focusMm), "a focus distance > 0 mm");
-  s.camera = makeViewCamera(s.desc, s.pose, co);
-  return s;
-}
-
-// Writes the exposed EXR and the sRGB PNG together (temporaries renamed only when both succeed).
-double writeOutputs(const Image& cameraRgb, const CameraSetup& cs, const std::string& out) {
-  const double k = exposureFactor(cameraRgb, cs.desc.sensor, cs.exposure);
-  const Image exposed = scaledImage(cameraRgb, k);
-  OutputSet outputs;
-  const std::string exrTmp = outputs.add(out), pngTmp = outputs.add(cs.png);
-  auto exr = std::async(std::launch::async, [&] { writeImage(exposed, exrTmp); });
-  writeImage(cameraRgbToSrgb(exposed, cs.desc.sensor), pngTmp);
-  exr.get();
-  outputs.commit();
-  return k;
 }
 
 void printCamera(const CameraSetup& cs) {
@@ -132,22 +71,88 @@ void printCamera(const CameraSetup& cs) {
               formatNumber(cs.camera->sensor().pitchMm * 1e3).c_str(), cs.pose.describe().c_str());
 }
 
+void printWritten(double k, const CameraSetup& cs, const std::string& out) {
+  std::printf("exposure:    %s%s\n", formatNumber(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
+  std::printf("wrote:       %s, %s\n", out.c_str(), cs.png.c_str());
+}
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+struct ViewOpts {
+  CameraPoseOpts cam;
+  DisplayArgs display;
+  std::string eia, mla = "real", spectral = "primaries", estimator = "auto";
+  int apertureGrid = ViewSettings{}.apertureGrid, wavelengthNodes = 1;
+  double gapMm = 0.0, background = 0.0, cosN = 0.0;
+  bool noCoverGlass = false, relative = false, noCull = false;
+  CLI::Option* gapOpt = nullptr;
+};
+
+ViewSettings viewSettings(const ViewOpts& o) {
+  ViewSettings vs;
+  vs.spp = o.cam.spp;
+  vs.seed = o.cam.run.seed;
+  vs.progress = !o.cam.quiet;
+  vs.backgroundY = o.background;
+  vs.cullTiles = !o.noCull;
+  vs.spectral = o.spectral == "visible" ? SpectralSampling::Visible : SpectralSampling::Primaries;
+  vs.apertureGrid = o.apertureGrid;
+  vs.wavelengthNodes = o.wavelengthNodes;
+  if (o.estimator == "auto")  // quadrature integrates the primaries' spectra: it needs --spectral primaries
+    vs.panelEstimator = vs.spectral == SpectralSampling::Primaries ? PanelEstimator::Quadrature : PanelEstimator::Footprint;
+  else
+    parsePanelEstimator(o.estimator, vs.panelEstimator);
+  // Quadrature has no noise: one stratum per pixel unless asked (RMSE ~1.3% of the mean
+  // against 16 at the sensor's resolution; inim bench).
+  if (vs.panelEstimator == PanelEstimator::Quadrature && o.cam.sppOpt->count() == 0) vs.spp = 1;
+  return vs;
+}
+
+void runViewCommand(const ViewOpts& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string ext = lowerExtension(o.eia);
+  if (ext != ".exr" && ext != ".png")
+    throw InputError("", "--eia", "\"" + o.eia + "\"", "an EIA image: linear EXR (or encoded PNG)");
+  if (!std::filesystem::exists(o.eia)) throw InputError(o.eia, "--eia", "\"" + o.eia + "\"", "an existing EIA image");
+  ViewRunSettings s;
+  s.camera = o.cam.settings();
+  s.displayPath = o.display.display;
+  s.layout = layoutOverride(o.display);
+  if (o.gapOpt->count()) s.gapMm = o.gapMm;
+  s.eiaPath = o.eia;
+  s.mla = o.mla == "ideal" ? MlaKind::Ideal : MlaKind::Real;
+  s.emitter.absolute = !o.relative;
+  s.emitter.cosExponent = o.cosN;
+  s.emitter.coverGlass = !o.noCoverGlass;
+  s.view = viewSettings(o);
+  const ViewRunResult r = runView(s, [&](const ViewRunResult& v) {
+    if (o.cam.quiet) return;
+    std::printf("display:     %s (g = %s mm, %s MLA%s)\n", v.display.name.c_str(), formatNumber(v.gapMm).c_str(),
+                o.mla == "ideal" ? "ideal thin-lens" : "real refracting", v.coverGlass ? ", cover glass" : "");
+    std::printf("eia:         %s (%d x %d px)\n", o.eia.c_str(), v.eiaWidth, v.eiaHeight);
+    printCamera(v.camera);
+    std::fflush(stdout);
+  });
+  if (!r.render.stats.displayInView())
+    std::fprintf(stderr,
+                 "inim: warning: the display is out of the camera's view (%s): no camera ray reaches its active "
+                 "area; the image shows only the background\n",
+                 r.camera.pose.describe().c_str());
+  if (o.cam.quiet) return;
+  std::printf("%s", summaryText(r, s.view, secondsSince(t0)).c_str());
+  printWritten(r.exposureFactor, r.camera, o.cam.s.out);
+}
+
 }  // namespace
 
 void addViewCommand(CLI::App& app) {
-  struct Opts {
-    CameraPoseOpts cam;
-    std::string display, eia, mla = "real", spectral = "primaries", layout;
-    std::string estimator = "auto";
-    int apertureGrid = 16, wavelengthNodes = 1;
-    double gapMm = 0.0, background = 0.0, cosN = 0.0, viewingDistanceMm = 0.0;
-    bool noCoverGlass = false, relative = false, noCull = false;
-  };
-  auto o = std::make_shared<Opts>();
+  auto o = std::make_shared<ViewOpts>();
   auto* cmd = app.add_subcommand(
       "view", "Simulate what a camera sees when the display shows an EIA: spectral Monte Carlo through the camera "
               "lens, the MLA and the panel's subpixels");
-  cmd->add_option("--display", o->display, "Display JSON (default: optics/displays/paper-prototype.json)");
+  addDisplayOptions(cmd, o->display);
   cmd->add_option("--eia", o->eia, "EIA: linear drive values (EXR from inim eia), panel-sized or EIA-sized; a PNG is "
                                    "decoded through the panel's EOTF")
       ->required();
@@ -155,20 +160,17 @@ void addViewCommand(CLI::App& app) {
                                    "pinhole-MLA comparison)")
       ->check(CLI::IsMember({"real", "ideal"}))
       ->capture_default_str();
-  auto* gapOpt = cmd->add_option("--gap-mm", o->gapMm, "Panel to MLA reference plane, mm (default: the display's "
-                                                       "reconstruction gap)");
-  auto* layoutOpt = cmd->add_option("--layout", o->layout, "EI layout the EIA was made for: parallel, toed-in or "
-                                                           "lens-grid (default: the display's)");
-  auto* distOpt = cmd->add_option("--viewing-distance-mm", o->viewingDistanceMm, "Viewing distance D of a toed-in layout");
+  o->gapOpt = cmd->add_option("--gap-mm", o->gapMm, "Panel to MLA reference plane, mm (default: the display's "
+                                                    "reconstruction gap)");
   cmd->add_option("--spectral", o->spectral, "Wavelength sampling: primaries (importance-sampled per panel primary) "
                                              "or visible (4-wavelength packets)")
       ->check(CLI::IsMember({"primaries", "visible"}))
       ->capture_default_str();
   cmd->add_option("--estimator", o->estimator,
                   "Panel estimator: point (subpixel under each ray), footprint (box average over the sample's "
-                  "share of the pixel footprint), quadrature (pixel area, aperture and spectra all by quadrature, no noise; spp = "
-                  "strata per pixel, default 1) or auto (quadrature: the lowest error for the time at every width "
-                  "in inim bench)")
+                  "share of the pixel footprint), quadrature (pixel area, aperture and spectra all by quadrature, no "
+                  "noise; spp = strata per pixel, default 1) or auto (quadrature: the lowest error for the time at "
+                  "every width in inim bench)")
       ->check(CLI::IsMember({"point", "footprint", "quadrature", "auto"}))
       ->capture_default_str();
   cmd->add_option("--aperture-grid", o->apertureGrid,
@@ -185,105 +187,14 @@ void addViewCommand(CLI::App& app) {
   cmd->add_flag("--no-cull", o->noCull, "Trace every tile, also those that cannot see the display");
   cmd->add_flag("--relative", o->relative, "Panel white = luminance 1 instead of its peak luminance in cd/m^2");
   addCameraPoseOptions(cmd, o->cam);
-
-  cmd->callback([o, cmd, gapOpt, layoutOpt, distOpt] {
-    const auto t0 = std::chrono::steady_clock::now();
-    ThreadLimit threads(o->cam.run.threads);
-    CameraSetup cs = setupCamera(o->cam);
-    if (!(o->background >= 0.0) || !std::isfinite(o->background))
-      throw InputError("", "--background", formatNumber(o->background), "a luminance >= 0");
-    if (!(o->cosN >= 0.0) || !std::isfinite(o->cosN))
-      throw InputError("", "--emission-cos-n", formatNumber(o->cosN), "an exponent >= 0");
-
-    Display d = loadDisplay(displayPathOrDefault(o->display));
-    LayoutOverride lo;
-    if (layoutOpt->count()) lo.layout = o->layout;
-    if (distOpt->count()) lo.viewingDistanceMm = o->viewingDistanceMm;
-    const EiLayout L = applyLayoutOverride(d, lo);
-    const double g = gapOpt->count() ? o->gapMm : d.reconstructionGapMm;
-    if (!(g > 0.0) || !std::isfinite(g)) throw InputError("", "--gap-mm", formatNumber(g), "a gap > 0 mm");
-
-    const std::string ext = lowerExtension(o->eia);
-    if (ext != ".exr" && ext != ".png")
-      throw InputError("", "--eia", "\"" + o->eia + "\"", "an EIA image: linear EXR (or encoded PNG)");
-    if (!fs::exists(o->eia)) throw InputError(o->eia, "--eia", "\"" + o->eia + "\"", "an existing EIA image");
-    Image eia;
-    try {
-      eia = readImage(o->eia, true);
-    } catch (const InputError& e) {
-      throw e.file().empty() ? e.withFile(o->eia) : e;
-    }
-    EmitterSettings es;
-    es.absolute = !o->relative;
-    es.cosExponent = o->cosN;
-    es.coverGlass = !o->noCoverGlass;
-    es.encoded = ext == ".png";
-    DisplayModel dm = makeDisplayModel(d, L, eia, o->eia, o->mla == "ideal" ? MlaKind::Ideal : MlaKind::Real, g, es);
-    const PanelEmitter& panel = *dm.panel;
-
-    ViewSettings vs;
-    vs.spp = o->cam.spp;
-    vs.seed = o->cam.run.seed;
-    vs.progress = !o->cam.quiet;
-    vs.backgroundY = o->background;
-    vs.cullTiles = !o->noCull;
-    vs.spectral = o->spectral == "visible" ? SpectralSampling::Visible : SpectralSampling::Primaries;
-    vs.apertureGrid = o->apertureGrid;
-    vs.wavelengthNodes = o->wavelengthNodes;
-    if (o->estimator == "auto")  // quadrature integrates the primaries' spectra: it needs --spectral primaries
-      vs.panelEstimator = vs.spectral == SpectralSampling::Primaries ? PanelEstimator::Quadrature : PanelEstimator::Footprint;
-    else
-      parsePanelEstimator(o->estimator, vs.panelEstimator);
-    // Quadrature has no noise: one stratum per pixel unless asked (RMSE ~1.3% of the mean
-    // against 16 at the sensor's resolution; inim bench).
-    if (vs.panelEstimator == PanelEstimator::Quadrature && cmd->count("--spp") == 0) vs.spp = 1;
-
-    if (!o->cam.quiet) {
-      std::printf("display:     %s (g = %s mm, %s MLA%s)\n", d.name.c_str(), formatNumber(g).c_str(),
-                  o->mla == "ideal" ? "ideal thin-lens" : "real refracting",
-                  panel.hasCoverGlass() ? ", cover glass" : "");
-      std::printf("eia:         %s (%d x %d px)\n", o->eia.c_str(), eia.width, eia.height);
-      printCamera(cs);
-      std::fflush(stdout);
-    }
-    const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    ViewResult r = renderView(*cs.camera, cs.desc.sensor, *dm.mla, panel, dm.area, vs);
-    const double k = writeOutputs(r.image, cs, o->cam.out);
-
-    if (!r.stats.displayInView())
-      std::fprintf(stderr,
-                   "inim: warning: the display is out of the camera's view (%s): no camera ray reaches its active "
-                   "area; the image shows only the background\n",
-                   cs.pose.describe().c_str());
-    if (!o->cam.quiet) {
-      const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::printf("rendered:    %d spp, %s wavelengths (%d ray%s per sample%s), %.2f s render, %.2f s total "
-                  "(loading %.2f s)\n",
-                  vs.spp, spectralSamplingName(vs.spectral), r.stats.raysPerSample, r.stats.raysPerSample > 1 ? "s" : "",
-                  r.stats.dispersive ? ", dispersive" : "", r.stats.seconds, total, loadSeconds);
-      std::printf("rays:        %llu traced, %llu on the display, %llu reached the panel, %llu on a subpixel; %llu "
-                  "pixels skipped (their tiles cannot see the display)\n",
-                  (unsigned long long)r.stats.tracedRays, (unsigned long long)r.stats.displayRays,
-                  (unsigned long long)r.stats.panelRays, (unsigned long long)r.stats.emittingRays,
-                  (unsigned long long)r.stats.culledPixels);
-      if (vs.panelEstimator == PanelEstimator::Quadrature)
-        std::printf("estimator:   quadrature: %llu pixel pieces integrated (%llu strata cut by a lenslet border), "
-                    "%llu pieces x primaries lost by the MLA, %llu fallbacks, %llu table/Jacobian rays\n",
-                    (unsigned long long)r.stats.quadrature.pieces, (unsigned long long)r.stats.quadrature.splitStrata,
-                    (unsigned long long)r.stats.quadrature.lostPieces, (unsigned long long)r.stats.quadrature.fallbacks,
-                    (unsigned long long)r.stats.quadrature.probeRays);
-      else
-        std::printf("estimator:   %s\n", panelEstimatorName(vs.panelEstimator));
-      std::printf("exposure:    %s%s\n", formatNumber(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
-      std::printf("wrote:       %s, %s\n", o->cam.out.c_str(), cs.png.c_str());
-    }
-  });
+  addRunOptions(cmd, o->cam.run, [o] { runViewCommand(*o); });
 }
 
 void addReferenceCommand(CLI::App& app) {
   struct Opts {
     CameraPoseOpts cam;
-    std::string scene, run, display, scale, rotate, translate;
+    std::string scene, run, display;
+    PlacementArgs place;
   };
   auto o = std::make_shared<Opts>();
   auto* cmd = app.add_subcommand(
@@ -292,56 +203,36 @@ void addReferenceCommand(CLI::App& app) {
   cmd->add_option("--scene,--field", o->scene,
                   "Scene JSON or trained radiance field (.inimrf) (default: the run file's, else scenes/paper-fig7.json)");
   cmd->add_option("--run", o->run, "Run file of the EIA (placement, scene, display); options override it");
-  auto* scaleOpt = cmd->add_option("--scale", o->scale, "Placement scale: S or sx,sy,sz (display mm per field unit)");
-  auto* rotOpt = cmd->add_option("--rotate-deg", o->rotate, "Placement rotation rx,ry,rz, degrees");
-  auto* trOpt = cmd->add_option("--translate-mm", o->translate, "Placement translation x,y,z, mm");
+  addPlacementOptions(cmd, o->place);
   cmd->add_option("--display", o->display, "Display JSON (default: the run file's, else the paper prototype): "
                                            "checks that the display area is in view");
   addCameraPoseOptions(cmd, o->cam);
-
-  cmd->callback([o, scaleOpt, rotOpt, trOpt] {
+  addRunOptions(cmd, o->cam.run, [o] {
     const auto t0 = std::chrono::steady_clock::now();
-    ThreadLimit threads(o->cam.run.threads);
-    RunFile run;
-    if (!o->run.empty()) run = loadRunFile(o->run);
-    const std::string scenePath = !o->scene.empty() ? o->scene : run.scene.value_or(defaultScenePath());
-    LoadedField lf = loadField(scenePath, "--scene");
-    const Field* scene = lf.field.get();
-    PlacementArgs pa;
-    pa.scale = o->scale, pa.rotate = o->rotate, pa.translate = o->translate;
-    pa.scaleOpt = scaleOpt, pa.rotOpt = rotOpt, pa.trOpt = trOpt;
-    const Placement pl = resolvePlacement(pa, run.placement ? run.placement : lf.placement);
-    const Transform toDisplay = pl.toDisplay();  // singular placements fail here
-    CameraSetup cs = setupCamera(o->cam);
-
-    Display d = loadDisplay(displayPathOrDefault(!o->display.empty() ? o->display : run.display.value_or("")));
-    const EiLayout L = computeLayout(d);
-    const AreaMm area = L.activeArea();
-
-    if (!o->cam.quiet) {
-      std::printf("scene:       %s; placement %s\n", scenePath.c_str(), pl.describe().c_str());
-      printCamera(cs);
+    const RunFile run = o->run.empty() ? RunFile{} : loadRunFile(o->run);
+    ReferenceRunSettings s;
+    s.camera = o->cam.settings();
+    s.fieldPath = !o->scene.empty() ? o->scene : run.scene.value_or("");
+    s.placement = run.placement;
+    s.placementOverride = placementOverride(o->place);
+    s.displayPath = !o->display.empty() ? o->display : run.display.value_or("");
+    s.reference.spp = o->cam.spp;
+    s.reference.seed = o->cam.run.seed;
+    s.reference.progress = !o->cam.quiet;
+    const ReferenceRunResult r = runReference(s, [&](const ReferenceRunResult& v) {
+      if (o->cam.quiet) return;
+      std::printf("scene:       %s; placement %s\n", v.fieldPath.c_str(), v.placement.describe().c_str());
+      printCamera(v.camera);
       std::fflush(stdout);
-    }
-    ReferenceSettings rs;
-    rs.spp = o->cam.spp;
-    rs.seed = o->cam.run.seed;
-    rs.progress = !o->cam.quiet;
-    ViewResult r = renderReference(*scene, toDisplay, *cs.camera, cs.desc.sensor, rs);
-    const double k = writeOutputs(r.image, cs, o->cam.out);
-
-    if (displayCoverage(*cs.camera, area) == 0.0)
-      std::fprintf(stderr,
-                   "inim: warning: the display is out of the camera's view (%s); the reference is rendered anyway\n",
-                   cs.pose.describe().c_str());
-    if (!o->cam.quiet) {
-      const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::printf("rendered:    %d spp, %.2f s render, %.2f s total; %llu rays, %llu hit the scene\n", rs.spp,
-                  r.stats.seconds, total, (unsigned long long)r.stats.tracedRays,
-                  (unsigned long long)r.stats.emittingRays);
-      std::printf("exposure:    %s%s\n", formatNumber(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
-      std::printf("wrote:       %s, %s\n", o->cam.out.c_str(), cs.png.c_str());
-    }
+    });
+    if (!r.displayInView)
+      std::fprintf(stderr, "inim: warning: the display is out of the camera's view (%s); the reference is rendered anyway\n",
+                   r.camera.pose.describe().c_str());
+    if (o->cam.quiet) return;
+    std::printf("rendered:    %d spp, %.2f s render, %.2f s total; %llu rays, %llu hit the scene\n", s.reference.spp,
+                r.render.stats.seconds, secondsSince(t0), (unsigned long long)r.render.stats.tracedRays,
+                (unsigned long long)r.render.stats.emittingRays);
+    printWritten(r.exposureFactor, r.camera, o->cam.s.out);
   });
 }
 

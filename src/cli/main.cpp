@@ -3,14 +3,8 @@
 #include <exception>
 
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "core/error.h"
-
-namespace inim::cli {
-void addRunOptions(CLI::App* cmd, RunOptions& opts) {
-  cmd->add_option("--seed", opts.seed, "Random seed; output depends on it only")->capture_default_str();
-  cmd->add_option("--threads", opts.threads, "Worker threads (0 = all cores)")->capture_default_str();
-}
-}  // namespace inim::cli
 
 int main(int argc, char** argv) {
   CLI::App app{"inim: spectral simulator for integral-imaging light-field displays"};
@@ -38,7 +32,7 @@ int main(int argc, char** argv) {
     int code = app.exit(e);
     return code == 0 ? 0 : inim::kExitBadInput;
   } catch (const inim::InputError& e) {
-    std::fprintf(stderr, "inim: error: %s\n", e.what());
+    std::fprintf(stderr, "inim: error: %s\n", inim::cli::asCommandLineError(e).what());
     return inim::kExitBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "inim: failed: %s\n", e.what());

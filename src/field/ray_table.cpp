@@ -1,14 +1,19 @@
-#include "core/format.h"
 #include "field/ray_table.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/image.h"
 #include "core/npy.h"
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "spectral/cie.h"
+#include "spectral/color.h"
 
 namespace inim {
 
@@ -163,6 +168,52 @@ void ColorTableField::query(std::span<const FieldRay> rays, std::span<const Samp
     }
     out[i] = s;
   }
+}
+
+std::vector<float> answerRayTable(const Field& field, const RayTable& table, uint64_t seed) {
+  const size_t n = table.rays.size();
+  const bool spectral = field.encoding() == FieldEncoding::Spectral;
+  const Mat3 toRgb = ColorSystem::xyzToRec709();
+  std::vector<float> rows(n * 5, 0.0f);
+  constexpr uint64_t kWavelengthSalt = 0x51EC7A1ull;
+  constexpr int64_t kBatch = 4096;
+  parallelForRange(int64_t(n), [&](int64_t begin, int64_t end) {
+    const size_t b0 = size_t(begin), b1 = size_t(end);
+    std::vector<FieldRay> rays(table.rays.begin() + std::ptrdiff_t(b0), table.rays.begin() + std::ptrdiff_t(b1));
+    std::vector<SampledWavelengths> lambdas;
+    if (spectral)
+      for (const FieldRay& r : rays) {
+        Rng rng = Rng::forSample(seed ^ kWavelengthSalt, r.id, r.sample);
+        lambdas.push_back(SampledWavelengths::sampleVisible(rng.uniform()));
+      }
+    std::vector<FieldSample> out(rays.size());
+    for (auto& r : rays)
+      if (!(r.tFar >= r.tNear)) r.tFar = r.tNear;
+    field.query(rays, lambdas, out, seed);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const Vec3 rgb = spectral ? toRgb * sampledToXYZ(out[i].L, lambdas[i]) : out[i].rgb;
+      float* row = &rows[(b0 + i) * 5];
+      row[0] = rgb.x, row[1] = rgb.y, row[2] = rgb.z;
+      row[3] = out[i].opacity;
+      row[4] = std::isfinite(out[i].depth) ? out[i].depth : std::numeric_limits<float>::infinity();
+    }
+  }, nullptr, kBatch);
+  return rows;
+}
+
+void writeColorTable(const std::string& path, std::vector<float> rows) {
+  const size_t n = rows.size() / 5;
+  if (lowerExtension(path) == ".npy") {
+    NpyArray a;
+    a.rows = int64_t(n), a.cols = 5;
+    a.data = std::move(rows);
+    writeNpy(path, a);
+    return;
+  }
+  const int w = int(std::min<size_t>(std::max<size_t>(n, 1), size_t(kExrWidth)));
+  Image img(w, int((n + size_t(w) - 1) / size_t(w)), {"R", "G", "B", "A", "Z"});
+  std::copy(rows.begin(), rows.end(), img.data.begin());
+  writeImage(img, path);
 }
 
 }  // namespace inim

@@ -81,4 +81,13 @@ class ColorTableField : public Field {
   Point3 lo_, hi_;
 };
 
+// One of inim's own fields answering a ray table as an external renderer would (`inim query`):
+// N x 5 floats, row i = linear Rec.709 R G B, opacity and depth (inf when nothing was hit) of
+// ray i. A spectral field is sampled at one visible wavelength packet per ray, drawn from
+// (seed, ray id, sample); rays that never reach the VCP (far < near) answer nothing.
+std::vector<float> answerRayTable(const Field& field, const RayTable& table, uint64_t seed);
+// Writes such rows as ColorTableField::load reads them: .npy (float32 N x 5) or .exr (R G B A
+// Z, laid out like the rays). Throws std::runtime_error when writing fails.
+void writeColorTable(const std::string& path, std::vector<float> rows);
+
 }  // namespace inim

@@ -9,7 +9,7 @@
 #include "dataset/dataset.h"
 #include "radiance/trainer.h"
 #include "radiance/volume_renderer.h"
-#include "synthesis/placement.h"
+#include "field/placement.h"
 
 namespace inim {
 

@@ -28,7 +28,7 @@
 #include "field/field.h"
 #include "rays/ray_set.h"
 #include "synthesis/panel_color.h"
-#include "synthesis/placement.h"
+#include "field/placement.h"
 #include "triads/triads.h"
 
 namespace inim {

@@ -8,7 +8,7 @@
 // viewer sees: depth is never inverted, and the scene may lie in front of the MLA (real
 // image), behind it (virtual image), or both.
 //
-// The field sits in the display frame through a placement (synthesis/placement.h), so each
+// The field sits in the display frame through a placement (field/placement.h), so each
 // query ray is taken into the field frame by the inverse placement. Field rays have unit
 // directions in the field frame; `tScale` converts field distances back to display mm.
 #include <cstdint>

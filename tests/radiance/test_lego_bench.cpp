@@ -123,37 +123,3 @@ TEST(LegoBench, HeldOutPsnr) {
               double(rendered) / renderSec, double(rendered) / renderCpu);
   EXPECT_GE(meanPsnr, 28.0);
 }
-
-// Field query speed on a trained model (INIM_LEGO_MODEL=path, e.g. saved by INIM_LEGO_SAVE):
-// display-like rays (a plane of origins, directions within +-15 degrees of -z, as an EIA's
-// orthoscopic queries), through RadianceField::query. INIM_LEGO_QUERY_RAYS sets the count.
-TEST(LegoBench, FieldQuerySpeed) {
-  if (std::string(env("INIM_LEGO_BENCH", "0")) != "1") GTEST_SKIP() << "set INIM_LEGO_BENCH=1";
-  const char* model = std::getenv("INIM_LEGO_MODEL");
-  if (!model) GTEST_SKIP() << "set INIM_LEGO_MODEL to a saved model";
-  RadianceField field(loadVoxelGrid(model));
-  size_t n = size_t(std::atol(env("INIM_LEGO_QUERY_RAYS", "2000000")));
-  std::vector<FieldRay> rays(n);
-  int side = int(std::sqrt(double(n))) + 1;
-  for (size_t i = 0; i < n; ++i) {
-    float u = float(i % side) / float(side), v = float(i / side) / float(side);
-    float ax = radians(15.0f) * (2.0f * float((i * 7) % 25) / 24.0f - 1.0f);
-    float ay = radians(15.0f) * (2.0f * float((i * 11) % 25) / 24.0f - 1.0f);
-    rays[i].o = Point3(-1.5f + 3.0f * u, -1.5f + 3.0f * v, 3.0f);
-    rays[i].d = glm::normalize(Vec3(std::tan(ax), std::tan(ay), -1.0f));
-    rays[i].tNear = 0.5f;
-    rays[i].id = i;
-  }
-  std::vector<FieldSample> out(n);
-  double c0 = cpuSeconds();
-  auto t0 = std::chrono::steady_clock::now();
-  field.query(rays, {}, out, 0);
-  double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  double cpu = cpuSeconds() - c0;
-  size_t hits = 0;
-  for (const FieldSample& s : out) hits += s.opacity > 0.5f;
-  std::printf("field query: %zu rays (%.1f%% hit) in %.2f s wall (%.0f rays/s), %.2f cpu s "
-              "(%.0f rays per cpu-second); 6.2 M rays would take %.1f s on 2 idle cores\n",
-              n, 100.0 * double(hits) / double(n), sec, double(n) / sec, cpu, double(n) / cpu,
-              6.2e6 / (2.0 * double(n) / cpu));
-}

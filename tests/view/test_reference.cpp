@@ -12,7 +12,7 @@
 #include "core/transform.h"
 #include "render/probe_field.h"
 #include "spectral/cie.h"
-#include "synthesis/placement.h"
+#include "field/placement.h"
 #include "view/display_pose.h"
 #include "view/reference_renderer.h"
 #include "view_test_util.h"

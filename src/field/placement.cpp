@@ -1,5 +1,4 @@
-#include "core/format.h"
-#include "synthesis/placement.h"
+#include "field/placement.h"
 
 #include <cmath>
 #include <cstdio>
@@ -7,6 +6,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/json_config.h"
 
 namespace fs = std::filesystem;
@@ -27,9 +27,9 @@ Transform Placement::toDisplay() const {
   };
   if (!finite(scale) || scale.x == 0.0 || scale.y == 0.0 || scale.z == 0.0)
     bad(scaleKey, scale, "a non-zero, finite scale on every axis (a singular placement maps the field onto a plane)");
-  if (!finite(rotateDeg)) bad(source == "command line" ? "--rotate-deg" : "placement.rotate_deg", rotateDeg, "finite angles");
+  if (!finite(rotateDeg)) bad(source == "command line" ? "rotate_deg" : "placement.rotate_deg", rotateDeg, "finite angles");
   if (!finite(translateMm))
-    bad(source == "command line" ? "--translate-mm" : "placement.translate_mm", translateMm, "a finite offset");
+    bad(source == "command line" ? "translate_mm" : "placement.translate_mm", translateMm, "a finite offset");
   try {
     return Transform::translate(translateMm) * Transform::rotateXYZ(rotateDeg) *
            Transform::scale(scale, scaleKey);
@@ -45,6 +45,15 @@ bool Placement::isIdentity() const {
 std::string Placement::describe() const {
   std::string s = scale.x == scale.y && scale.y == scale.z ? "scale " + formatNumber(scale.x) : "scale (" + vecText(scale) + ")";
   return s + " mm/unit, rotate (" + vecText(rotateDeg) + ") deg, translate (" + vecText(translateMm) + ") mm";
+}
+
+Placement resolvePlacement(const std::optional<Placement>& base, const PlacementOverride& given) {
+  Placement p = base.value_or(Placement{});
+  if (given.scale) p.scale = *given.scale, p.scaleKey = "scale", p.source = "command line";
+  if (given.rotateDeg) p.rotateDeg = *given.rotateDeg, p.source = "command line";
+  if (given.translateMm) p.translateMm = *given.translateMm, p.source = "command line";
+  (void)p.toDisplay();
+  return p;
 }
 
 Vec3d parseVec3(const std::string& text, const std::string& key, bool allowScalar) {
@@ -104,7 +113,7 @@ RunFile loadRunFile(const std::string& path) {
     }
     pl.rotateDeg = p.vec3("rotate_deg", Vec3d(0.0));
     pl.translateMm = p.vec3("translate_mm", Vec3d(0.0));
-    if (pl.scaleKey == "--scale") pl.scaleKey = p.keyPath("scale");
+    if (pl.scaleKey == "scale") pl.scaleKey = p.keyPath("scale");
     p.rejectUnknown();
     (void)pl.toDisplay();  // singular scales are reported here, naming the run file
     r.placement = pl;

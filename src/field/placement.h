@@ -1,6 +1,8 @@
 #pragma once
-// Where the field sits in the display frame (DESIGN.md section 1, step 3): a placement
-// transform field -> display, display = T(translate) * R(rotate) * S(scale) * field.
+// Where the field sits in the display frame (docs/design.md): a placement transform
+// field -> display, display = T(translate) * R(rotate) * S(scale) * field. It lives beside the
+// Field interface because every stage that places a field uses it: EIA synthesis, the
+// reference view, a trained model's default placement (fitting).
 //
 // `scale` is display millimetres per field unit (per axis, or uniform). A trained radiance
 // field lives in its own units: the paper placed its NeRF at 0.0075 field units per mm, i.e.
@@ -11,7 +13,7 @@
 // and which are virtual (z < 0, behind it).
 //
 // A run file (JSON) holds the placement and, optionally, the other synthesis settings, so a
-// run can be repeated; command-line options override it:
+// run can be repeated; settings given one by one (the command line) override it:
 //   {
 //     "placement": {"scale": 1 | [sx, sy, sz] | "field_units_per_mm": 0.0075,
 //                   "rotate_deg": [rx, ry, rz], "translate_mm": [x, y, z]},
@@ -33,9 +35,11 @@ struct Placement {
   Vec3d scale{1.0, 1.0, 1.0};      // display mm per field unit, per axis
   Vec3d rotateDeg{0.0, 0.0, 0.0};  // about x, then y, then z (R = Rz Ry Rx), degrees
   Vec3d translateMm{0.0, 0.0, 0.0};
-  // Where the values came from ("command line" or the run file), for error messages.
+  // Where the values came from ("command line", the run file or the model), for error
+  // messages: settings given one by one are named by their keys (scale, rotate_deg,
+  // translate_mm), a run file's by the file and its key path (placement.scale).
   std::string source = "command line";
-  std::string scaleKey = "--scale";
+  std::string scaleKey = "scale";
 
   // The field -> display transform. InputError naming `source` and the scale key when the
   // scale is singular (a zero or non-finite factor) or any value is not finite.
@@ -43,6 +47,15 @@ struct Placement {
   bool isIdentity() const;
   std::string describe() const;  // "scale 1, rotate (0, 0, 0) deg, translate (0, 0, 0) mm"
 };
+
+// Placement values given one by one (absent = keep the base's).
+struct PlacementOverride {
+  std::optional<Vec3d> scale, rotateDeg, translateMm;
+};
+// `base` (a run file's placement, or a trained field's own; the defaults when absent) with the
+// override applied. The transform is checked here, before any work (a singular placement is an
+// InputError naming the setting that made it).
+Placement resolvePlacement(const std::optional<Placement>& base, const PlacementOverride& given);
 
 // Settings a run file may carry (absent = not given; the command line or defaults decide).
 struct RunFile {
@@ -58,8 +71,8 @@ struct RunFile {
 // Strict reader (unknown keys are errors naming the file and key).
 RunFile loadRunFile(const std::string& path);
 
-// Parses "x,y,z" (or one number when `allowScalar`, meaning x = y = z) from the command
-// line; InputError naming `key` otherwise.
+// Parses "x,y,z" (or one number when `allowScalar`, meaning x = y = z), as settings are
+// written on the command line; InputError naming `key` otherwise.
 Vec3d parseVec3(const std::string& text, const std::string& key, bool allowScalar = false);
 
 }  // namespace inim

@@ -1,0 +1,45 @@
+#pragma once
+// What the benchmarks of src/bench share: the default scene with one camera ray per pixel of
+// the default render, and the default display with its orthoscopic query rays. Built on first
+// use, so that a filtered run builds only what it needs.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <vector>
+
+#include "bench/benchmarks.h"
+#include "display/display.h"
+#include "display/ei_layout.h"
+#include "field/field.h"
+#include "render/camera.h"
+#include "scene/analytic_scene.h"
+
+namespace inim::bench {
+
+struct SceneContext {
+  std::unique_ptr<AnalyticScene> scene;
+  CameraSpec camera;
+  std::vector<FieldRay> rays;  // one camera ray per pixel of the render
+  std::vector<SampledWavelengths> lambdas;
+};
+SceneContext& sceneContext();
+
+struct EiaContext {
+  Display display;
+  EiLayout layout;
+  std::vector<FieldRay> queries;
+  std::vector<SampledWavelengths> lambdas;
+};
+EiaContext& eiaContext();
+
+// Peak resident memory of the process so far, MiB.
+double peakRssMiB();
+
+// Each family registers its benchmarks; the print functions add their tables after the run.
+void registerQueryBenchmarks(double minTime);
+void registerViewBenchmarks(const ViewBenchSettings& settings);
+void printViewBenchResults();
+void registerRadianceBenchmarks(const RadianceBenchSettings& settings);
+void printRadianceBenchResults();
+
+}  // namespace inim::bench

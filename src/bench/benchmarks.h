@@ -1,0 +1,61 @@
+#pragma once
+// inim's speed benchmarks on Google Benchmark, with ratios taken between benchmarks of the
+// same run (these machines are shared and noisy, so absolute times drift):
+//
+//   render/paper-fig7      the full default render (1920x1080, 16 spp, direct lighting)
+//   query/bare-embree      rtcIntersect1 over the camera rays of that image, nothing else
+//   query/inim-hit         the same rays through inim's intersection (full surface data)
+//   query/inim-field       the same rays through Field::query (radiance, direct lighting)
+//   eia/paper-fig7         full orthoscopic EIA of the default display (6,215,625 rays, 1 spp)
+//   eia-query/bare-embree  rtcIntersect1 over that EIA's 6.2M query rays
+//   eia-query/inim-field   the same query rays through Field::query
+//   view/E/spp:N           a view of the default EIA (real MLA, real lens, 0 deg) at the view
+//                          width, N spp, panel estimator E (point, footprint, quadrature);
+//                          view/reference/E is the same estimator at the reference spp (seed 2).
+//                          The table after the run gives each one's RMSE against its own
+//                          reference (noise) and against the point estimator's reference
+//                          (noise + bias), relative to the reference's mean, and the ratio of
+//                          the means
+//   radiance/eia-query     the default display's EIA from a trained model (when one is given);
+//                          target <= 30 s on 2 cores
+//   radiance/train-lego    train on the Lego scene (when its folder is given) at 200 x 200, every
+//                          8th view held out; reports the held-out PSNR; target >= 28 dB within
+//                          10 minutes
+#include <string>
+#include <vector>
+
+#include "field/placement.h"
+#include "view/view_renderer.h"
+
+namespace inim {
+
+struct ViewBenchSettings {
+  int width = 648;                   // image width (2592 = the sensor)
+  std::vector<int> spps = {1, 4, 16};
+  std::vector<PanelEstimator> estimators = {PanelEstimator::PointSample, PanelEstimator::Footprint,
+                                            PanelEstimator::Quadrature};
+  int referenceSpp = 0;                       // 0: 16x the largest of spps
+  int grid = ViewSettings{}.apertureGrid;     // aperture table grid of the runs
+  int referenceGrid = 0;                      // ... of their references; 0: grid
+};
+
+struct RadianceBenchSettings {
+  std::string modelPath;       // radiance/eia-query runs when given (.inimrf)
+  PlacementOverride placement;  // over the model's own placement
+  std::string legoDir;         // radiance/train-lego runs when given
+  int legoIterations = 3000;
+};
+
+struct BenchSettings {
+  std::string filter = ".*";  // regex of the benchmarks to run
+  double minTime = 0.5;       // minimum seconds per repeated benchmark
+  int threads = 0;            // as limited by the caller (0: all cores); printed in the header
+  ViewBenchSettings view;
+  RadianceBenchSettings radiance;
+};
+
+// Registers the benchmarks, runs those the filter selects, and prints the results and the
+// tables of ratios to stdout.
+void runBenchmarks(const BenchSettings& settings);
+
+}  // namespace inim

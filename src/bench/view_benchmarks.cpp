@@ -1,0 +1,159 @@
+// view/: the default EIA shown on the default display, seen by the default camera, for each
+// panel estimator and sample count, against references of the same estimator and of the point
+// estimator.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "bench/bench_context.h"
+#include "camera/camera_config.h"
+#include "synthesis/eia_synthesis.h"
+#include "view/display_model.h"
+#include "view/view_camera.h"
+
+namespace inim::bench {
+
+namespace {
+
+struct ViewContext {
+  ViewBenchSettings settings;  // with referenceSpp and referenceGrid resolved
+  std::unique_ptr<DisplayModel> dm;
+  CameraDescription desc;
+  std::unique_ptr<CameraModel> camera;
+  std::map<std::pair<int, int>, Image> images;    // by (estimator, spp); estimator -1 - e: e's reference
+  std::map<std::pair<int, int>, double> seconds;
+  std::map<std::pair<int, int>, double> rssMiB;   // peak RSS of the process after the run
+};
+ViewContext& viewContext() {
+  static ViewContext v;
+  return v;
+}
+
+// Builds the display and camera on first use.
+ViewContext& builtViewContext() {
+  ViewContext& v = viewContext();
+  if (!v.dm) {
+    EiaContext& e = eiaContext();
+    SynthesisSettings s;
+    s.autoExposure = true;
+    s.progress = false;
+    s.spp = 4;
+    SynthesisResult r = synthesizeEia(e.layout, e.display.panel, *sceneContext().scene, s);
+    v.dm = std::make_unique<DisplayModel>(makeDisplayModel(e.display, e.layout, r.eia, "(default EIA)", MlaKind::Real));
+    v.desc = loadCameraDescription(defaultCameraPath());
+    DisplayPose pose;
+    pose.distanceMm = v.desc.distanceMm;
+    ViewCameraOptions co;
+    co.width = v.settings.width;
+    v.camera = makeViewCamera(v.desc, pose, co);
+  }
+  return v;
+}
+
+// Args: spp, estimator (int(PanelEstimator); -1 - e: the reference of estimator e).
+void benchView(benchmark::State& state) {
+  ViewContext& v = builtViewContext();
+  ViewSettings s;
+  s.spp = int(state.range(0));
+  const int est = int(state.range(1));
+  s.panelEstimator = est < 0 ? PanelEstimator(-1 - est) : PanelEstimator(est);
+  s.progress = false;
+  // References use another seed: the same seed would share their first samples (the same
+  // Sobol points, the same Fresnel choices) with the runs they are compared with.
+  if (est < 0) s.seed = 2;
+  s.apertureGrid = est < 0 ? v.settings.referenceGrid : v.settings.grid;
+  const std::pair<int, int> key(est, s.spp);
+  for (auto _ : state) {
+    ViewResult r = renderView(*v.camera, v.desc.sensor, *v.dm->mla, *v.dm->panel, v.dm->area, s);
+    v.images[key] = std::move(r.image);
+    v.seconds[key] = r.stats.seconds;
+  }
+  v.rssMiB[key] = peakRssMiB();
+  state.counters["peak_RSS_MiB"] = peakRssMiB();
+}
+
+// RMSE of `a` against `ref` over the pixels where the reference has signal, relative to the
+// reference's mean there.
+double relativeRmse(const Image& a, const Image& ref) {
+  double se = 0, sum = 0;
+  size_t n = 0;
+  for (int y = 0; y < ref.height; ++y)
+    for (int x = 0; x < ref.width; ++x) {
+      double r = ref.at(x, y, 0) + ref.at(x, y, 1) + ref.at(x, y, 2);
+      if (!(r > 0.0)) continue;
+      for (int c = 0; c < 3; ++c) {
+        double d = double(a.at(x, y, c)) - ref.at(x, y, c);
+        se += d * d;
+        sum += ref.at(x, y, c);
+      }
+      n += 3;
+    }
+  return n && sum > 0 ? std::sqrt(se / double(n)) / (sum / double(n)) : 0.0;
+}
+
+double meanOf(const Image& img) {
+  double m = 0.0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c) m += img.at(x, y, c);
+  return m / (3.0 * img.width * img.height);
+}
+
+void printEstimatorRows(ViewContext& v, PanelEstimator e, const Image& ref, const Image* pointRef) {
+  const int refSpp = v.settings.referenceSpp;
+  const std::pair<int, int> refKey(-1 - int(e), refSpp);
+  auto row = [&](int spp, const Image& img, double sec, double rss) {
+    const double vsPoint = pointRef ? 100.0 * relativeRmse(img, *pointRef) : NAN;
+    const double ratio = pointRef ? meanOf(img) / meanOf(*pointRef) : NAN;
+    std::printf("  %-10s %6d %10.2f %11.2f%% %13.2f%% %12.4f %14.0f\n", panelEstimatorName(e), spp, sec,
+                100.0 * relativeRmse(img, ref), vsPoint, ratio, rss);
+  };
+  for (int spp : v.settings.spps) {
+    const std::pair<int, int> key(int(e), spp);
+    if (v.images.count(key)) row(spp, v.images[key], v.seconds[key], v.rssMiB[key]);
+  }
+  row(refSpp, ref, v.seconds[refKey], v.rssMiB[refKey]);
+}
+
+}  // namespace
+
+void registerViewBenchmarks(const ViewBenchSettings& settings) {
+  ViewContext& v = viewContext();
+  v.settings = settings;
+  const int maxSpp = *std::max_element(settings.spps.begin(), settings.spps.end());
+  v.settings.referenceSpp = settings.referenceSpp > 0 ? settings.referenceSpp : 16 * maxSpp;
+  v.settings.referenceGrid = settings.referenceGrid > 0 ? settings.referenceGrid : settings.grid;
+  for (PanelEstimator e : settings.estimators)
+    for (int spp : settings.spps)
+      benchmark::RegisterBenchmark(("view/" + std::string(panelEstimatorName(e)) + "/spp:" + std::to_string(spp)).c_str(),
+                                   benchView)
+          ->Args({spp, int(e)})->Iterations(1)->UseRealTime()->Unit(benchmark::kMillisecond);
+  for (PanelEstimator e : settings.estimators)
+    benchmark::RegisterBenchmark(("view/reference/" + std::string(panelEstimatorName(e))).c_str(), benchView)
+        ->Args({v.settings.referenceSpp, -1 - int(e)})->Iterations(1)->UseRealTime()->Unit(benchmark::kMillisecond);
+}
+
+void printViewBenchResults() {
+  ViewContext& v = viewContext();
+  const int refSpp = v.settings.referenceSpp;
+  const std::pair<int, int> pointRefKey(-1 - int(PanelEstimator::PointSample), refSpp);
+  const Image* pointRef = v.images.count(pointRefKey) ? &v.images[pointRefKey] : nullptr;
+  bool header = false;
+  for (PanelEstimator e : v.settings.estimators) {
+    const std::pair<int, int> refKey(-1 - int(e), refSpp);
+    if (!v.images.count(refKey)) continue;
+    const Image& ref = v.images[refKey];
+    if (!header) {
+      std::printf("\nview (real MLA, real lens, 0 deg) at %d x %d: time, RMSE relative to the mean against the same "
+                  "estimator at %d spp (own ref) and against the point estimator at %d spp (point ref), mean / "
+                  "point ref's mean\n", ref.width, ref.height, refSpp, refSpp);
+      std::printf("  %-10s %6s %10s %12s %14s %12s %14s\n", "estimator", "spp", "seconds", "RMSE own ref",
+                  "RMSE point ref", "mean ratio", "peak RSS MiB");
+      header = true;
+    }
+    printEstimatorRows(v, e, ref, pointRef);
+  }
+}
+
+}  // namespace inim::bench

@@ -1,0 +1,70 @@
+#pragma once
+// Option groups that several commands share, declared once: run options (seed, threads),
+// the display and its EI layout, placement, real-lens rays; the rule "an option
+// given on the command line, else the run file's value, else the default"; and the table that
+// names a library setting by its flag when an error is printed.
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "core/error.h"
+#include "field/placement.h"
+#include "mla/real_lens_rays.h"
+#include "synthesis/display_overrides.h"
+
+namespace inim::cli {
+
+// --seed and --threads. `body` is the command: it runs with the thread limit in force.
+struct RunOptions {
+  uint64_t seed = 1;
+  int threads = 0;  // 0 = all cores
+  CLI::Option* seedOpt = nullptr;
+};
+void addRunOptions(CLI::App* cmd, RunOptions& opts, std::function<void()> body);
+
+// The option's value when it was given on the command line, else the run file's, else
+// `fallback`.
+template <class T>
+T optionOrRun(const CLI::Option* option, const T& given, const std::optional<T>& fromRun, const T& fallback) {
+  if (option && option->count()) return given;
+  return fromRun ? *fromRun : fallback;
+}
+
+// --display, --layout, --viewing-distance-mm.
+struct DisplayArgs {
+  std::string display, layout;
+  double viewingDistanceMm = 0.0;
+  CLI::Option *displayOpt = nullptr, *layoutOpt = nullptr, *distanceOpt = nullptr;
+};
+void addDisplayOptions(CLI::App* cmd, DisplayArgs& a);
+// The layout options given on the command line, else the run file's.
+LayoutOverride layoutOverride(const DisplayArgs& a, const RunFile* run = nullptr);
+
+// --scale, --rotate-deg, --translate-mm.
+struct PlacementArgs {
+  std::string scale, rotate, translate;
+};
+void addPlacementOptions(CLI::App* cmd, PlacementArgs& a);
+PlacementOverride placementOverride(const PlacementArgs& a);
+
+// --real-lens, --real-lens-ray, --wavelength-nm.
+struct RealLensArgs {
+  bool on = false;
+  std::string model = "centroid";
+  double wavelengthNm = kLambdaDNm;
+  CLI::Option *onOpt = nullptr, *modelOpt = nullptr, *wavelengthOpt = nullptr;
+};
+void addRealLensOptions(CLI::App* cmd, RealLensArgs& a, const std::string& help);
+// The options checked (InputError naming the option when one is given without --real-lens).
+RealLensRayOptions realLensRayOptions(const RealLensArgs& a);
+
+// The flag that sets a library setting ("spp" -> "--spp", "vcp_mm" -> "--vcp-mm"); a key that
+// no flag sets is returned as it is.
+std::string flagForSetting(const std::string& key);
+// The error as the command line reports it: a setting named by its flag. Errors about a file
+// keep the file's own key.
+InputError asCommandLineError(const InputError& e);
+
+}  // namespace inim::cli

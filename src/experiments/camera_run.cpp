@@ -1,0 +1,141 @@
+#include "experiments/camera_run.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cmath>
+#include <future>
+
+#include "core/error.h"
+#include "core/format.h"
+#include "core/output_file.h"
+#include "display/display.h"
+#include "fields/field_factory.h"
+#include "view/view_camera.h"
+
+namespace inim {
+
+namespace {
+
+CameraSetup setupCamera(const CameraRunSettings& o, int spp) {
+  if (spp < 1) throw InputError("", "spp", std::to_string(spp), "a whole number >= 1");
+  if (lowerExtension(o.out) != ".exr") throw InputError("", "out", "\"" + o.out + "\"", "an OpenEXR file name (.exr)");
+  CameraSetup s;
+  s.png = o.png.empty() ? std::filesystem::path(o.out).replace_extension(".png").string() : o.png;
+  if (lowerExtension(s.png) != ".png") throw InputError("", "png", "\"" + s.png + "\"", "a PNG file name (.png)");
+  s.exposure = parseExposure(o.exposure, "exposure");
+  for (auto [v, key] : {std::pair{o.width, "width"}, {o.height, "height"}})
+    if (v < 0) throw InputError("", key, std::to_string(v), "a whole number of pixels >= 1");
+  s.desc = loadCameraDescription(o.camera.empty() ? defaultCameraPath() : o.camera);
+  s.pose.rotHDeg = o.rotHDeg;
+  s.pose.rotVDeg = o.rotVDeg;
+  s.pose.distanceMm = o.distanceMm.value_or(s.desc.distanceMm);
+  if (!(s.pose.distanceMm > 0.0) || !std::isfinite(s.pose.distanceMm))
+    throw InputError("", "distance_mm", formatNumber(s.pose.distanceMm), "a camera distance > 0 mm");
+  ViewCameraOptions co;
+  co.kind = o.model;
+  co.width = o.width;
+  co.height = o.height;
+  co.focusMm = o.focusMm;
+  if (o.focusMm < 0.0 || !std::isfinite(o.focusMm))
+    throw InputError("", "focus_mm", formatNumber(o.focusMm), "a focus distance > 0 mm");
+  s.camera = makeViewCamera(s.desc, s.pose, co);
+  return s;
+}
+
+// Writes the exposed EXR and the sRGB PNG together (temporaries renamed only when both
+// succeed); returns the exposure factor.
+double writeExposed(const Image& cameraRgb, const CameraSetup& cs, const std::string& out) {
+  const double k = exposureFactor(cameraRgb, cs.desc.sensor, cs.exposure);
+  const Image exposed = scaledImage(cameraRgb, k);
+  OutputSet outputs;
+  const std::string exrTmp = outputs.add(out), pngTmp = outputs.add(cs.png);
+  auto exr = std::async(std::launch::async, [&] { writeImage(exposed, exrTmp); });
+  writeImage(cameraRgbToSrgb(exposed, cs.desc.sensor), pngTmp);
+  exr.get();
+  outputs.commit();
+  return k;
+}
+
+// The EIA, as drive values (a PNG is decoded through the panel's EOTF by the emitter).
+Image readEia(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext != ".exr" && ext != ".png")
+    throw InputError("", "eia", "\"" + path + "\"", "an EIA image: linear EXR (or encoded PNG)");
+  try {
+    return readImage(path, true);
+  } catch (const InputError& e) {
+    throw e.file().empty() ? e.withFile(path) : e;
+  }
+}
+
+}  // namespace
+
+ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ViewRunResult r;
+  r.camera = setupCamera(s.camera, s.view.spp);
+  if (!(s.view.backgroundY >= 0.0) || !std::isfinite(s.view.backgroundY))
+    throw InputError("", "background", formatNumber(s.view.backgroundY), "a luminance >= 0");
+  if (!(s.emitter.cosExponent >= 0.0) || !std::isfinite(s.emitter.cosExponent))
+    throw InputError("", "emission_cos_n", formatNumber(s.emitter.cosExponent), "an exponent >= 0");
+  r.display = loadDisplay(displayPathOrDefault(s.displayPath));
+  const EiLayout L = applyLayoutOverride(r.display, s.layout);
+  r.gapMm = s.gapMm.value_or(r.display.reconstructionGapMm);
+  if (!(r.gapMm > 0.0) || !std::isfinite(r.gapMm)) throw InputError("", "gap_mm", formatNumber(r.gapMm), "a gap > 0 mm");
+  const Image eia = readEia(s.eiaPath);
+  r.eiaWidth = eia.width, r.eiaHeight = eia.height;
+  EmitterSettings es = s.emitter;
+  es.encoded = lowerExtension(s.eiaPath) == ".png";
+  const DisplayModel dm = makeDisplayModel(r.display, L, eia, s.eiaPath, s.mla, r.gapMm, es);
+  r.coverGlass = dm.panel->hasCoverGlass();
+  if (loaded) loaded(r);
+  r.loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.render = renderView(*r.camera.camera, r.camera.desc.sensor, *dm.mla, *dm.panel, dm.area, s.view);
+  r.exposureFactor = writeExposed(r.render.image, r.camera, s.camera.out);
+  return r;
+}
+
+std::string summaryText(const ViewRunResult& run, const ViewSettings& vs, double totalSeconds) {
+  const ViewStats& st = run.render.stats;
+  char buf[3][400];
+  std::snprintf(buf[0], sizeof buf[0],
+                "rendered:    %d spp, %s wavelengths (%d ray%s per sample%s), %.2f s render, %.2f s total "
+                "(loading %.2f s)\n",
+                vs.spp, spectralSamplingName(vs.spectral), st.raysPerSample, st.raysPerSample > 1 ? "s" : "",
+                st.dispersive ? ", dispersive" : "", st.seconds, totalSeconds, run.loadSeconds);
+  std::snprintf(buf[1], sizeof buf[1],
+                "rays:        %llu traced, %llu on the display, %llu reached the panel, %llu on a subpixel; %llu "
+                "pixels skipped (their tiles cannot see the display)\n",
+                (unsigned long long)st.tracedRays, (unsigned long long)st.displayRays,
+                (unsigned long long)st.panelRays, (unsigned long long)st.emittingRays,
+                (unsigned long long)st.culledPixels);
+  if (vs.panelEstimator == PanelEstimator::Quadrature)
+    std::snprintf(buf[2], sizeof buf[2],
+                  "estimator:   quadrature: %llu pixel pieces integrated (%llu strata cut by a lenslet border), "
+                  "%llu pieces x primaries lost by the MLA, %llu fallbacks, %llu table/Jacobian rays\n",
+                  (unsigned long long)st.quadratureParts, (unsigned long long)st.splitStrata,
+                  (unsigned long long)st.lostParts, (unsigned long long)st.apertureFallbacks,
+                  (unsigned long long)st.apertureRays);
+  else
+    std::snprintf(buf[2], sizeof buf[2], "estimator:   %s\n", panelEstimatorName(vs.panelEstimator));
+  return std::string(buf[0]) + buf[1] + buf[2];
+}
+
+ReferenceRunResult runReference(const ReferenceRunSettings& s,
+                                const std::function<void(const ReferenceRunResult&)>& loaded) {
+  ReferenceRunResult r;
+  const LoadedField field = loadField(s.fieldPath.empty() ? defaultScenePath() : s.fieldPath, "scene");
+  r.fieldPath = field.path;
+  r.placement = resolvePlacement(s.placement ? s.placement : field.placement, s.placementOverride);
+  const Transform toDisplay = r.placement.toDisplay();
+  r.camera = setupCamera(s.camera, s.reference.spp);
+  const Display d = loadDisplay(displayPathOrDefault(s.displayPath));
+  const DisplayArea area = lensletArrayArea(computeLayout(d), d.mla.pitchMm);
+  if (loaded) loaded(r);
+  r.render = renderReference(*field.field, toDisplay, *r.camera.camera, r.camera.desc.sensor, s.reference);
+  r.exposureFactor = writeExposed(r.render.image, r.camera, s.camera.out);
+  r.displayInView = displayCoverage(*r.camera.camera, area) > 0.0;
+  return r;
+}
+
+}  // namespace inim

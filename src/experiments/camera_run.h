@@ -1,0 +1,97 @@
+#pragma once
+// `inim view` and `inim reference` as a library. A camera at a pose in front of the display
+// sees the display showing an EIA (runView) or the field itself at the EIA's placement
+// (runReference); each writes linear camera RGB x exposure as an EXR and an sRGB PNG beside
+// it, both or neither. Errors name settings (spp, width, distance_mm, gap_mm, ...) before any
+// work.
+//
+//   ViewRunSettings s;
+//   s.eiaPath = "eia.exr";  s.camera.out = "view.exr";  s.camera.width = 648;
+//   ViewRunResult r = runView(s);
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "camera/camera_config.h"
+#include "camera/camera_model.h"
+#include "field/placement.h"
+#include "synthesis/display_overrides.h"
+#include "view/display_model.h"
+#include "view/display_pose.h"
+#include "view/reference_renderer.h"
+#include "view/view_image.h"
+#include "view/view_renderer.h"
+
+namespace inim {
+
+// The camera, its pose and the output files: what both runs share.
+struct CameraRunSettings {
+  std::string camera;                    // a name in optics/cameras or a file; "": the default camera
+  std::optional<CameraModelKind> model;  // default: the description's
+  std::optional<double> distanceMm;      // entrance pupil to display centre; default: the description's
+  double rotHDeg = 0.0, rotVDeg = 0.0;   // the display's turn (view/display_pose.h)
+  double focusMm = 0.0;                  // 0: the camera distance (the MLA plane)
+  int width = 0, height = 0;             // 0: the sensor's (view/view_camera.h)
+  std::string exposure = "auto";         // a factor, or auto (99th percentile -> 0.9)
+  std::string out, png;                  // the EXR; the PNG ("": beside it)
+};
+
+// The camera as loaded and placed.
+struct CameraSetup {
+  CameraDescription desc;
+  DisplayPose pose;
+  std::unique_ptr<CameraModel> camera;
+  Exposure exposure;
+  std::string png;
+};
+
+struct ViewRunSettings {
+  CameraRunSettings camera;
+  std::string displayPath;        // "": the paper's prototype
+  LayoutOverride layout;          // the layout the EIA was made for
+  std::optional<double> gapMm;    // panel to MLA; default: the display's reconstruction gap
+  std::string eiaPath;            // linear drive values (EXR), or an encoded PNG
+  MlaKind mla = MlaKind::Real;
+  EmitterSettings emitter;        // `encoded` follows the EIA's extension
+  ViewSettings view;
+};
+
+struct ViewRunResult {
+  CameraSetup camera;
+  Display display;
+  double gapMm = 0.0;
+  bool coverGlass = false;
+  int eiaWidth = 0, eiaHeight = 0;
+  double loadSeconds = 0.0;
+  ViewResult render;
+  double exposureFactor = 1.0;
+};
+
+// `loaded` (optional) is called when everything is loaded, before the render.
+ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded = {});
+// The render's lines as `inim view` prints them: samples and time, rays, the estimator's counts.
+std::string summaryText(const ViewRunResult& r, const ViewSettings& view, double totalSeconds);
+
+struct ReferenceRunSettings {
+  CameraRunSettings camera;
+  std::string fieldPath;                // "": scenes/paper-fig7.json
+  std::optional<Placement> placement;   // a run file's; absent: the field's own
+  PlacementOverride placementOverride;  // given one by one, over that
+  std::string displayPath;              // the display whose area should be in view; "": the prototype
+  ReferenceSettings reference;
+};
+
+struct ReferenceRunResult {
+  CameraSetup camera;
+  std::string fieldPath;
+  Placement placement;
+  ViewResult render;
+  double exposureFactor = 1.0;
+  bool displayInView = true;
+};
+
+ReferenceRunResult runReference(const ReferenceRunSettings& s,
+                                const std::function<void(const ReferenceRunResult&)>& loaded = {});
+
+}  // namespace inim

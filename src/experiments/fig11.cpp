@@ -1,0 +1,220 @@
+#include "experiments/fig11.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "analysis/contact_sheet.h"
+#include "analysis/plot.h"
+#include "camera/camera_config.h"
+#include "core/error.h"
+#include "core/format.h"
+#include "core/output_file.h"
+#include "display/display.h"
+#include "display/ei_layout.h"
+#include "fields/field_factory.h"
+#include "synthesis/eia_synthesis.h"
+#include "view/reference_renderer.h"
+#include "view/view_camera.h"
+#include "view/view_image.h"
+#include "view/view_renderer.h"
+
+namespace fs = std::filesystem;
+
+namespace inim {
+
+namespace {
+
+struct PoseSpec {
+  const char* name;   // file-name stem
+  const char* label;  // contact-sheet label
+  double rotH, rotV;  // sign of the turn (the magnitude is the settings' angle)
+};
+// Left/right: the display turned about its vertical axis; top/bottom: about its horizontal axis.
+// The sign convention is view/display_pose.h's.
+constexpr PoseSpec kPoses[5] = {{"centre", "0°", 0, 0},
+                                {"left", "H -7°", -7, 0},
+                                {"right", "H +7°", 7, 0},
+                                {"top", "V +7°", 0, 7},
+                                {"bottom", "V -7°", 0, -7}};
+
+void validate(const Fig11Settings& s) {
+  for (auto [v, key] : {std::pair{s.spp, "spp"}, {s.referenceSpp, "reference_spp"}, {s.eiaSpp, "eia_spp"},
+                        {s.width, "width"}})
+    if (v < 1) throw InputError("", key, std::to_string(v), "a whole number >= 1");
+  if (!(s.angleDeg >= 0.0 && s.angleDeg < 60.0))
+    throw InputError("", "angle_deg", std::to_string(s.angleDeg), "an angle in [0, 60) degrees");
+}
+
+// Everything a run reads, loaded before any work so that every error comes first.
+struct Inputs {
+  Display display;
+  EiLayout layout;
+  LoadedField field;
+  CameraDescription camera;
+  Placement placement;
+  Transform fieldToDisplay;
+  double distanceMm = 0;
+};
+
+Inputs loadInputs(const Fig11Settings& s) {
+  Inputs in;
+  in.display = loadDisplay(displayPathOrDefault(s.displayPath));
+  in.layout = computeLayout(in.display);
+  in.field = loadField(s.fieldPath.empty() ? defaultScenePath() : s.fieldPath, "field");
+  in.camera = loadCameraDescription(s.camera);
+  in.placement = resolvePlacement(in.field.placement, s.placement);
+  in.fieldToDisplay = in.placement.toDisplay();
+  in.distanceMm = s.distanceMm > 0.0 ? s.distanceMm : in.camera.distanceMm;
+  return in;
+}
+
+// The reconstruction and the reference of one pose, exposed alike, linear and sRGB.
+struct PoseImages {
+  Image recExposed, refExposed, recSrgb, refSrgb;
+};
+
+// One exposure for both, in the same units: the EIA maps field luminance Y to drive
+// exposureUsed x Y, which the panel shows at exposureUsed x Y x peak luminance (cd/m^2), the
+// unit of the reconstruction. So the reference, scaled by that, is what an ideal display would
+// show; the exposure that suits the reference then applies to both, and what the optics lose or
+// add (Fresnel, black matrix, crosstalk) stays visible in the metrics.
+PoseImages exposeAlike(const Image& rec, const Image& ref, double refToCdM2, const CameraSensor& sensor) {
+  const Image refCdM2 = scaledImage(ref, refToCdM2);
+  const double k = exposureFactor(refCdM2, sensor, Exposure{});
+  PoseImages p;
+  p.recExposed = scaledImage(rec, k);
+  p.refExposed = scaledImage(refCdM2, k);
+  p.recSrgb = cameraRgbToSrgb(p.recExposed, sensor);
+  p.refSrgb = cameraRgbToSrgb(p.refExposed, sensor);
+  return p;
+}
+
+void writeJson(const Json& j, const std::string& path) {
+  FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw std::runtime_error("cannot write " + path);
+  std::fputs(j.dump(2).c_str(), f);
+  std::fputc('\n', f);
+  std::fclose(f);
+}
+
+std::optional<ViewPair>& sheetSlot(Fig11Views& sheet, const std::string& name) {
+  if (name == "left") return sheet.left;
+  if (name == "right") return sheet.right;
+  if (name == "top") return sheet.top;
+  if (name == "bottom") return sheet.bottom;
+  return sheet.centre;
+}
+
+// A run: the inputs, the synthesized display and the outputs being collected.
+class Fig11Run {
+ public:
+  Fig11Run(const Fig11Settings& s, Inputs& in, const DisplayModel& dm, double refToCdM2)
+      : s_(s), in_(in), dm_(dm), refToCdM2_(refToCdM2), dir_(s.outDir) {}
+
+  OutputSet outputs;
+  Fig11Views sheet;
+  Json metrics = Json::object();
+  std::vector<std::vector<std::string>> rows;
+
+  std::string out(const std::string& name) { return outputs.add((dir_ / name).string()); }
+
+  Fig11View renderPose(const PoseSpec& p) {
+    Fig11View v;
+    v.name = p.name;
+    v.label = p.label;
+    v.pose.rotHDeg = p.rotH == 0 ? 0.0 : std::copysign(s_.angleDeg, p.rotH);
+    v.pose.rotVDeg = p.rotV == 0 ? 0.0 : std::copysign(s_.angleDeg, p.rotV);
+    v.pose.distanceMm = in_.distanceMm;
+    ViewCameraOptions co;
+    co.width = s_.width;
+    auto camera = makeViewCamera(in_.camera, v.pose, co);
+
+    ViewSettings vs;  // the estimator and aperture grid of every view tool
+    vs.spp = s_.spp;
+    vs.seed = s_.seed;
+    ViewResult rec = renderView(*camera, in_.camera.sensor, *dm_.mla, *dm_.panel, dm_.area, vs);
+    v.displayInView = rec.stats.displayInView();
+    v.reconstructionSeconds = rec.stats.seconds;
+    ReferenceSettings rs;
+    rs.spp = s_.referenceSpp;
+    rs.seed = s_.seed;
+    ViewResult ref = renderReference(*in_.field.field, in_.fieldToDisplay, *camera, in_.camera.sensor, rs);
+    v.referenceSeconds = ref.stats.seconds;
+
+    const PoseImages img = exposeAlike(rec.image, ref.image, refToCdM2_, in_.camera.sensor);
+    writeImage(img.recExposed, out("view_" + v.name + ".exr"));
+    writeImage(img.recSrgb, out("view_" + v.name + ".png"));
+    writeImage(img.refExposed, out("reference_" + v.name + ".exr"));
+    writeImage(img.refSrgb, out("reference_" + v.name + ".png"));
+    const PixelMask mask = displayMask(*camera, dm_.area);
+    if (mask.count() == 0) return v;
+    CompareOptions copt;
+    copt.spaceA = copt.spaceB = "srgb";
+    v.metrics = compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference_" + v.name, "view_" + v.name);
+    v.hasMetrics = true;
+    record(v, img);
+    return v;
+  }
+
+ private:
+  void record(const Fig11View& v, const PoseImages& img) {
+    Json mj = metricsJson(v.metrics);
+    mj["rot_h_deg"] = v.pose.rotHDeg;
+    mj["rot_v_deg"] = v.pose.rotVDeg;
+    mj["reconstruction_seconds"] = v.reconstructionSeconds;
+    metrics[v.name] = mj;
+    rows.push_back(metricsCsvRow(v.name, v.metrics));
+    sheetSlot(sheet, v.name) = ViewPair{v.label, img.refSrgb, img.recSrgb};
+  }
+
+  const Fig11Settings& s_;
+  Inputs& in_;
+  const DisplayModel& dm_;
+  double refToCdM2_;
+  fs::path dir_;
+};
+
+}  // namespace
+
+Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
+  validate(s);
+  Inputs in = loadInputs(s);
+  Fig11Result result;
+  result.fieldPath = in.field.path;
+
+  // 1. The EIA, as `inim eia` makes it.
+  SynthesisSettings ss;
+  ss.placement = in.placement;
+  ss.spp = s.eiaSpp;
+  ss.seed = s.seed;
+  ss.autoExposure = true;
+  SynthesisResult eia = synthesizeEia(in.layout, in.display.panel, *in.field.field, ss);
+  result.eiaWidth = eia.eia.width, result.eiaHeight = eia.eia.height, result.eiaSeconds = eia.stats.seconds;
+  if (observer.eiaDone) observer.eiaDone(result);
+  DisplayModel dm = makeDisplayModel(in.display, in.layout, eia.eia, "(synthesized EIA)", s.mla);
+
+  // 2. Five poses: reconstruction and reference through the same camera.
+  Fig11Run run(s, in, dm, eia.stats.exposureUsed * in.display.panel.peakLuminanceCdM2);
+  writeImage(eia.eia, run.out("eia.exr"));
+  writeImage(encodeForPanel(eia.eia, in.display.panel.eotf), run.out("eia.png"));
+  for (const PoseSpec& p : kPoses) {
+    result.views.push_back(run.renderPose(p));
+    if (observer.viewDone) observer.viewDone(result.views.back());
+  }
+
+  // 3. The contact sheet and the metrics; every output lands together.
+  ContactSheetOptions cso;
+  cso.heading = "inim fig11: " + fs::path(in.field.path).filename().string() + " on " + in.display.name + ", " +
+                in.camera.name + " at " + std::to_string(int(std::lround(in.distanceMm))) + " mm, MLA " +
+                mlaKindName(s.mla);
+  writeImage(composeFig11Sheet(run.sheet, cso), run.out("contact_sheet.png"));
+  writeJson(run.metrics, run.out("metrics.json"));
+  writeCsv(run.out("metrics.csv"), metricsCsvHeader("view"), run.rows);
+  run.outputs.commit();
+  return result;
+}
+
+}  // namespace inim

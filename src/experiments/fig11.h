@@ -1,0 +1,69 @@
+#pragma once
+// The paper's Fig. 11 reproduced in software. One run makes the EIA of a field for a display,
+// then looks at the display and at the field itself with the same camera from five directions
+// (0 deg, +-angle horizontally, +-angle vertically, the display turned about its centre as the
+// paper's gimbal does), and writes into the output folder: eia.exr/png, view_POSE and
+// reference_POSE (.exr linear camera RGB x exposure, .png sRGB), a contact sheet laid out like
+// the figure, and metrics.json / metrics.csv (PSNR, SSIM, CIEDE2000 mean and 95th percentile
+// over the pixels that see the display; both images at one exposure, compared as sRGB).
+// All outputs are written together at the end, or none.
+//
+//   Fig11Settings s;
+//   s.outDir = "out/fig11";
+//   Fig11Result r = runFig11(s);
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "analysis/metrics.h"
+#include "field/placement.h"
+#include "view/display_model.h"
+#include "view/display_pose.h"
+
+namespace inim {
+
+struct Fig11Settings {
+  std::string outDir;
+  std::string displayPath;                     // "": the paper's prototype
+  std::string fieldPath;                       // "": scenes/paper-fig7.json; or a trained model (.inimrf)
+  std::string camera = "alvium-1800-u-500c";   // a name in optics/cameras or a file
+  MlaKind mla = MlaKind::Real;                 // of the reconstruction
+  PlacementOverride placement;                 // over the field's own placement
+  int width = 648;        // view width in pixels (the sensor's pitch scales; 2592 = full)
+  int spp = 4;            // strata per pixel of the reconstructed views (ViewSettings' estimator)
+  int referenceSpp = 8;   // samples per pixel of the reference views
+  int eiaSpp = 4;         // field samples per display ray of the EIA
+  double angleDeg = 7.0;  // viewing angle of the four side views
+  double distanceMm = 0;  // camera distance; 0: the camera description's
+  uint64_t seed = 1;
+};
+
+struct Fig11View {
+  std::string name;   // file-name stem: centre, left, right, top, bottom
+  std::string label;  // contact-sheet label: "0°", "H -7°", ...
+  DisplayPose pose;
+  bool displayInView = true;  // some camera ray of the reconstruction reached the display
+  bool hasMetrics = false;    // false when no pixel sees the display
+  ImageMetrics metrics;
+  double reconstructionSeconds = 0, referenceSeconds = 0;
+};
+
+struct Fig11Result {
+  std::string fieldPath;
+  int eiaWidth = 0, eiaHeight = 0;
+  double eiaSeconds = 0;
+  std::vector<Fig11View> views;
+};
+
+// Progress as the run goes (optional): after the EIA, and after each view.
+struct Fig11Observer {
+  std::function<void(const Fig11Result&)> eiaDone;
+  std::function<void(const Fig11View&)> viewDone;
+};
+
+// InputError naming the setting (spp, reference_spp, eia_spp, width, angle_deg, field, ...)
+// before any work or output.
+Fig11Result runFig11(const Fig11Settings& settings, const Fig11Observer& observer = {});
+
+}  // namespace inim

@@ -1,0 +1,49 @@
+#pragma once
+// The field factory: every kind of Field from a file, chosen by the file's extension, with
+// what its users need besides the Field interface (its kind, its own default placement, the
+// analytic scene's integrator). Its own stage, after the stages of the field kinds (scene,
+// radiance, fitting for a model's metadata), so that they need not know each other and every
+// tool that takes "a field" (eia, reference, render, query, fig11, bench) loads it one way.
+//
+//   LoadedField f = loadField("scenes/paper-fig7.json", "scene");
+//   Placement p = resolvePlacement(f.placement, {});  // a trained model carries its own
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "field/field.h"
+#include "field/placement.h"
+#include "field/ray_table.h"
+
+namespace inim {
+
+class AnalyticScene;
+
+enum class FieldKind { AnalyticScene, RadianceField, ExternalColors };
+const char* fieldKindName(FieldKind k);  // "analytic scene", "radiance field", "external field colours"
+
+struct LoadedField {
+  std::unique_ptr<Field> field;
+  std::string path;
+  FieldKind kind = FieldKind::AnalyticScene;
+  // The field itself when it is an analytic scene (its integrator settings can be changed),
+  // else null.
+  AnalyticScene* analyticScene = nullptr;
+  // The field's own default placement: a trained model carries one (its units); absent for
+  // analytic scenes, which are in display millimetres.
+  std::optional<Placement> placement;
+};
+
+// scenes/paper-fig7.json under the data folder: the field every tool shows by default.
+std::string defaultScenePath();
+
+// `path` by extension: .json = analytic scene, .inimrf = trained radiance field. InputError
+// naming the setting `key` otherwise.
+LoadedField loadField(const std::string& path, const std::string& key);
+
+// The colours an external renderer filled in for the query rays of a synthesis run
+// (`inim rays --for-field`): one row per query, numQueries = display rays x spp. Its extent is
+// unknown, so its bounds are unbounded.
+LoadedField loadFieldColors(const std::string& path, int spp, size_t numQueries, ColorEncoding encoding);
+
+}  // namespace inim

@@ -1,0 +1,103 @@
+#include "fitting/fit_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "analysis/metrics.h"
+#include "core/error.h"
+#include "radiance/grid_io.h"
+
+namespace fs = std::filesystem;
+
+namespace inim {
+
+std::vector<int> defaultStageStarts(int iterations, int stages) {
+  if (stages == 3) return {0, iterations / 6, iterations / 2};
+  std::vector<int> starts(size_t(std::max(stages, 0)), 0);
+  for (int s = 1; s < stages; ++s) starts[size_t(s)] = iterations * s / (2 * (stages - 1));
+  return starts;
+}
+
+namespace {
+
+void writeTrainingLogHeader(std::ostream& csv) {
+  csv << "iteration,loss,psnr_db,seconds,resolution_x,resolution_y,resolution_z,occupied_fraction,samples_per_ray\n";
+}
+
+void writeTrainingLogRow(std::ostream& csv, const TrainProgress& p) {
+  csv << p.iteration << ',' << p.loss << ',' << p.psnr << ',' << p.elapsedSeconds << ',' << p.res.x << ',' << p.res.y
+      << ',' << p.res.z << ',' << p.occupiedFraction << ',' << p.samplesPerRay << '\n';
+}
+
+double mean(const std::vector<ViewScore>& v, double ViewScore::*m) {
+  double s = 0;
+  for (const auto& x : v) s += x.*m;
+  return v.empty() ? 0.0 : s / double(v.size());
+}
+}  // namespace
+
+TrainingRunResult runTraining(const TrainingRunSettings& s) {
+  if (fs::path(s.modelPath).extension() != ".inimrf")
+    throw InputError("", "out", "\"" + s.modelPath + "\"", "a model file name ending in .inimrf");
+  TrainingRunResult r;
+  r.logPath = s.logPath.empty() ? fs::path(s.modelPath).replace_extension(".csv").string() : s.logPath;
+  const Dataset data = loadDataset(s.dataPath, s.data);
+  TrainConfig cfg = s.config;
+  cfg.boxLo = Point3(data.sceneBox.lo), cfg.boxHi = Point3(data.sceneBox.hi);
+  cfg.background = Vec3(data.background);
+  const TrainingRays rays = datasetRays(data, data.train);
+  if (s.loaded) s.loaded(data);
+
+  OutputSet outputs;
+  const std::string modelTmp = outputs.add(s.modelPath), logTmp = outputs.add(r.logPath);
+  std::ofstream csv(logTmp);
+  writeTrainingLogHeader(csv);
+  VoxelGrid grid;
+  r.stats = train(grid, rays, cfg, [&](const TrainProgress& p) {
+    writeTrainingLogRow(csv, p);
+    if (s.progress) s.progress(p);
+    return true;
+  });
+  csv.close();
+  if (!csv) throw std::runtime_error("cannot write " + r.logPath);
+  grid.metadata = modelMetadata(data);
+  saveVoxelGrid(grid, modelTmp);
+  const auto te = std::chrono::steady_clock::now();
+  r.heldOut = evaluate(grid, data, data.test, nullptr);
+  r.evalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - te).count();
+  outputs.commit();
+  r.gridResolution = grid.res;
+  r.shDegree = grid.shDegree;
+  return r;
+}
+
+double meanPsnr(const std::vector<ViewScore>& scores) { return mean(scores, &ViewScore::psnr); }
+double meanSsim(const std::vector<ViewScore>& scores) { return mean(scores, &ViewScore::ssim); }
+
+void writeEvaluation(const std::string& dir, const std::string& model, const Dataset& data,
+                     const std::vector<ViewScore>& scores, const std::vector<Image>& renders, OutputSet& outputs) {
+  nlohmann::json j = {{"model", model}, {"dataset", data.file}, {"views", nlohmann::json::array()}};
+  std::string csv = "frame,image,psnr_db,ssim\n";
+  for (size_t k = 0; k < scores.size(); ++k) {
+    const ViewScore& s = scores[k];
+    char name[64];
+    std::snprintf(name, sizeof name, "view_%04d", s.frame);
+    writeImage(renders[k], outputs.add((fs::path(dir) / (std::string(name) + "_model.png")).string()));
+    writeImage(colorImage(data.frames[size_t(s.frame)].image),
+               outputs.add((fs::path(dir) / (std::string(name) + "_photo.png")).string()));
+    j["views"].push_back({{"frame", s.frame}, {"image", s.image}, {"psnr_db", s.psnr}, {"ssim", s.ssim}});
+    char line[512];
+    std::snprintf(line, sizeof line, "%d,%s,%.4f,%.5f\n", s.frame, s.image.c_str(), s.psnr, s.ssim);
+    csv += line;
+  }
+  j["mean_psnr_db"] = meanPsnr(scores);
+  j["mean_ssim"] = meanSsim(scores);
+  std::ofstream(outputs.add((fs::path(dir) / "metrics.json").string())) << j.dump(2) << "\n";
+  std::ofstream(outputs.add((fs::path(dir) / "metrics.csv").string())) << csv;
+}
+
+}  // namespace inim

@@ -1,0 +1,77 @@
+// Command-line tests of `inim fig11` and `inim study`: they run the built binary. fig11 at a
+// small size writes the views, the contact sheet and metrics whose values are in their ranges;
+// a quick study writes its report and data; bad settings name their flags.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/cli_helpers.h"
+#include "scratch_dir.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+ScratchDir scratchFolder("test_cli_experiments");
+std::string path(const std::string& name) { return scratchFolder.path(name); }
+}  // namespace
+
+TEST(CliFig11, SmallRunWritesViewsAndMetricsInRange) {
+  const std::string out = path("fig11");
+  const CliResult r = runInim("fig11 --out " + out + " --width 96 --spp 1 --reference-spp 1 --eia-spp 1");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : {"eia.exr", "eia.png", "contact_sheet.png", "metrics.json", "metrics.csv"})
+    EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+  std::ifstream in(fs::path(out) / "metrics.json");
+  const nlohmann::json m = nlohmann::json::parse(in);
+  for (const char* pose : {"centre", "left", "right", "top", "bottom"}) {
+    SCOPED_TRACE(pose);
+    ASSERT_TRUE(m.contains(pose));
+    EXPECT_TRUE(fs::exists(fs::path(out) / ("view_" + std::string(pose) + ".exr")));
+    EXPECT_TRUE(fs::exists(fs::path(out) / ("reference_" + std::string(pose) + ".png")));
+    const auto& v = m[pose];
+    // The reconstruction is not the reference (a display loses resolution), so PSNR is finite.
+    const double psnr = v.at("psnr_db").get<double>();
+    EXPECT_TRUE(std::isfinite(psnr) && psnr > 0.0 && psnr < 100.0) << psnr;
+    const double ssim = v.at("ssim").get<double>();
+    EXPECT_TRUE(ssim >= -1.0 && ssim <= 1.0) << ssim;
+    const double deMean = v.at("de2000_mean").get<double>(), deP95 = v.at("de2000_p95").get<double>();
+    EXPECT_GE(deMean, 0.0);
+    EXPECT_GE(deP95, 0.0);
+    EXPECT_TRUE(std::isfinite(deMean) && std::isfinite(deP95));
+  }
+  // The side views are turned by the angle, the centre is not.
+  EXPECT_EQ(m["centre"]["rot_h_deg"].get<double>(), 0.0);
+  EXPECT_EQ(m["left"]["rot_h_deg"].get<double>(), -7.0);
+  EXPECT_EQ(m["top"]["rot_v_deg"].get<double>(), 7.0);
+}
+
+TEST(CliFig11, BadSettingsNameTheirFlags) {
+  const std::string out = path("fig11_bad");
+  expectBadInputWith(runInim, "fig11 --out " + out + " --spp 0", {"--spp", "0"}, {out + "/metrics.json"});
+  expectBadInputWith(runInim, "fig11 --out " + out + " --reference-spp 0", {"--reference-spp"}, {out + "/metrics.json"});
+  expectBadInputWith(runInim, "fig11 --out " + out + " --width 0", {"--width"}, {out + "/metrics.json"});
+  expectBadInputWith(runInim, "fig11 --out " + out + " --angle 75", {"--angle", "75"}, {out + "/metrics.json"});
+  expectBadInputWith(runInim, "fig11 --out " + out + " --field " + path("scene.txt"), {"--field", "scene.txt"},
+                     {out + "/metrics.json"});
+}
+
+TEST(CliStudy, QuickStudyWritesReportAndData) {
+  const std::string out = path("flip_onset");
+  const CliResult r = runInim("study flip-onset --quick --out " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("flip-onset: PASS"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(fs::path(out) / "report.md"));
+  EXPECT_GT(fs::file_size(fs::path(out) / "report.md"), 0u);
+  EXPECT_TRUE(fs::exists(fs::path(out) / "flip_onset.csv"));
+  EXPECT_TRUE(fs::exists(fs::path(out) / "flip_onset.png"));
+}
+
+TEST(CliStudy, UnknownStudyIsBadInput) {
+  const CliResult r = runInim("study no-such-study --quick --out " + path("none"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_FALSE(fs::exists(path("none")));
+}

@@ -1,0 +1,48 @@
+// The Fig. 11 experiment's settings: defaults as the paper's figure was reproduced, and bad
+// values reported by their setting names before any work or output.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "expect_input_error.h"
+#include "experiments/fig11.h"
+#include "scratch_dir.h"
+#include "view/view_renderer.h"
+
+using namespace inim;
+
+namespace {
+ScratchDir scratch("fig11");
+}
+
+TEST(Fig11, DefaultsAreTheFiguresAndTheViewDefaults) {
+  const Fig11Settings s;
+  EXPECT_EQ(s.spp, 4);  // quadrature strata per pixel
+  EXPECT_EQ(s.width, 648);
+  EXPECT_EQ(s.angleDeg, 7.0);
+  EXPECT_EQ(s.mla, MlaKind::Real);
+  // The reconstruction uses the view tools' estimator and aperture grid (ViewSettings).
+  const ViewSettings vs;
+  EXPECT_EQ(vs.panelEstimator, PanelEstimator::Quadrature);
+  EXPECT_EQ(vs.apertureGrid, 16);
+}
+
+TEST(Fig11, BadSettingsAreNamedBeforeAnyOutput) {
+  Fig11Settings s;
+  s.outDir = scratch.path("out");
+  auto keyOf = [&](Fig11Settings bad) { return expectInputError([&] { (void)runFig11(bad); }).key(); };
+  Fig11Settings b = s;
+  b.spp = 0;
+  EXPECT_EQ(keyOf(b), "spp");
+  b = s, b.referenceSpp = -1;
+  EXPECT_EQ(keyOf(b), "reference_spp");
+  b = s, b.eiaSpp = 0;
+  EXPECT_EQ(keyOf(b), "eia_spp");
+  b = s, b.width = 0;
+  EXPECT_EQ(keyOf(b), "width");
+  b = s, b.angleDeg = 60.0;
+  EXPECT_EQ(keyOf(b), "angle_deg");
+  b = s, b.fieldPath = "scene.obj";
+  EXPECT_EQ(keyOf(b), "field");
+  EXPECT_FALSE(std::filesystem::exists(s.outDir));
+}
