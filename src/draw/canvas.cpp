@@ -93,6 +93,7 @@ void Canvas::polyline(const std::vector<P2>& points, const Stroke& s) {
   const P2 lo(-m, -m), hi(width_ + m, height_ + m);
   bool open = false;
   P2 last(0.0);
+  cairo_new_path(cr);
   for (size_t i = 1; i < points.size(); ++i) {
     P2 a = points[i - 1], b = points[i];
     if (!finite(a) || !finite(b) || !clipSegment(a, b, lo, hi)) {
@@ -111,6 +112,7 @@ void Canvas::polyline(const std::vector<P2>& points, const Stroke& s) {
 void Canvas::fillPolygon(const std::vector<P2>& points, const Vec3& color, double alpha) {
   cairo_t* cr = impl_->cr;
   const double m = 8.0 * (width_ + height_) + 64.0;
+  cairo_new_path(cr);
   for (const P2& p : points)
     if (finite(p)) cairo_line_to(cr, std::clamp(p.x, -m, width_ + m), std::clamp(p.y, -m, height_ + m));
   cairo_close_path(cr);
@@ -136,7 +138,7 @@ void Canvas::strokeRect(double x0, double y0, double x1, double y1, const Stroke
 void Canvas::disc(P2 c, double radius, const Vec3& color, double alpha) {
   if (!finite(c) || !(radius > 0.0)) return;
   cairo_t* cr = impl_->cr;
-  cairo_new_sub_path(cr);
+  cairo_new_path(cr);
   cairo_arc(cr, c.x, c.y, radius, 0.0, 2.0 * kPi);
   setColor(cr, color, alpha);
   cairo_fill(cr);
@@ -161,6 +163,7 @@ void Canvas::image(const Image& img, int x, int y) {
     }
   }
   cairo_surface_mark_dirty(src);
+  cairo_new_path(impl_->cr);
   cairo_set_source_surface(impl_->cr, src, x, y);
   cairo_pattern_set_filter(cairo_get_source(impl_->cr), CAIRO_FILTER_NEAREST);
   cairo_rectangle(impl_->cr, x, y, img.width, img.height);
@@ -189,6 +192,7 @@ TextSize Canvas::text(const std::string& utf8, P2 at, const Font& font, const Ve
   cairo_move_to(cr, 0.0, 0.0);
   setColor(cr, color, 1.0);
   pango_cairo_show_layout(cr, layout);
+  cairo_new_path(cr);  // the path is not part of the saved state: leave no current point behind
   g_object_unref(layout);
   cairo_restore(cr);
   return size;
@@ -196,6 +200,7 @@ TextSize Canvas::text(const std::string& utf8, P2 at, const Font& font, const Ve
 
 void Canvas::pushClip(double x0, double y0, double x1, double y1) {
   cairo_save(impl_->cr);
+  cairo_new_path(impl_->cr);
   cairo_rectangle(impl_->cr, x0, y0, x1 - x0, y1 - y0);
   cairo_clip(impl_->cr);
   ++impl_->clipDepth;

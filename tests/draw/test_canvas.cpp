@@ -109,6 +109,25 @@ TEST(Canvas, TextIsPlacedByItsAnchor) {
   EXPECT_EQ(darkIn(img, 10, 100 + w / 2 + 2, 10 + h, 150), 0);
 }
 
+TEST(Canvas, ShapesAfterTextStartAfresh) {
+  // Text leaves no current point behind: a rectangle drawn next covers itself only (no
+  // sliver back to where the text began).
+  Canvas cv(200, 100);
+  cv.text("label", {10.0, 10.0}, {13.0}, Vec3(0.0f));
+  cv.fillRect(150, 60, 190, 90, Vec3(0.0f), 0.5);
+  cv.disc({100.0, 80.0}, 3.0, Vec3(0.0f));
+  cv.fillPolygon({{20.0, 90.0}, {40.0, 90.0}, {30.0, 70.0}}, Vec3(0.0f));
+  const Image img = cv.toImage();
+  int stray = 0;
+  for (int y = 0; y < 100; ++y)
+    for (int x = 0; x < 200; ++x) {
+      const bool expected = (x < 60 && y < 30) || (x >= 150 && y >= 60) || (x >= 96 && x < 104 && y >= 76 && y < 84) ||
+                            (x >= 19 && x <= 41 && y >= 69);
+      stray += !expected && img.at(x, y, 0) < 1.0f;
+    }
+  EXPECT_EQ(stray, 0);
+}
+
 TEST(Canvas, TransparentCanvasIsAnInkMask) {
   Canvas cv(20, 20, Vec3(0.0f), 0.0);
   cv.fillRect(5, 5, 10, 10, Vec3(0.3f));
