@@ -3,14 +3,20 @@
 #include <algorithm>
 #include <cmath>
 
-#include "analysis/bitmap_font.h"
 #include "analysis/metrics.h"
 #include "core/parallel.h"
+#include "draw/text.h"
 #include "spectral/color.h"
 
 namespace inim {
 
 namespace {
+
+draw::Font titleFont(const ContactSheetOptions& o) { return {o.titleSize}; }
+draw::Font headingFont(const ContactSheetOptions& o) { return {o.headingSize}; }
+// Text boxes in whole pixels.
+int textWidth(const std::string& s, const draw::Font& f) { return s.empty() ? 0 : int(std::ceil(draw::measureText(s, f).width)); }
+int lineHeight(const draw::Font& f) { return int(std::ceil(draw::measureText("Ag", f).height)); }
 
 struct CellSize {
   bool used = false;
@@ -34,7 +40,6 @@ SheetLayout layoutFromSizes(const std::vector<std::vector<CellSize>>& sizes, con
   const int rows = int(sizes.size());
   int cols = 0;
   for (const auto& r : sizes) cols = std::max(cols, int(r.size()));
-  const int ts = std::max(opt.titleScale, 1);
   std::vector<int> colW(size_t(cols), 0), rowH(size_t(rows), 0), rowTitle(size_t(rows), 0);
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < int(sizes[size_t(r)].size()); ++c) {
@@ -42,7 +47,7 @@ SheetLayout layoutFromSizes(const std::vector<std::vector<CellSize>>& sizes, con
       if (!s.used) continue;
       colW[size_t(c)] = std::max({colW[size_t(c)], s.w, s.titleW});
       rowH[size_t(r)] = std::max(rowH[size_t(r)], s.h);
-      if (s.titleW > 0) rowTitle[size_t(r)] = font::textHeight(ts) + opt.titleGap;
+      if (s.titleW > 0) rowTitle[size_t(r)] = lineHeight(titleFont(opt)) + opt.titleGap;
     }
   std::vector<int> colX(size_t(cols), 0), rowY(size_t(rows), 0);
   int x = opt.margin;
@@ -56,9 +61,8 @@ SheetLayout layoutFromSizes(const std::vector<std::vector<CellSize>>& sizes, con
   L.headingX = opt.margin;
   L.headingY = opt.margin;
   if (!opt.heading.empty()) {
-    const int hs = std::max(opt.headingScale, 1);
-    y += font::textHeight(hs) + 2 * opt.gap;
-    L.width = std::max(L.width, 2 * opt.margin + font::textWidth(opt.heading, hs));
+    y += lineHeight(headingFont(opt)) + 2 * opt.gap;
+    L.width = std::max(L.width, 2 * opt.margin + textWidth(opt.heading, headingFont(opt)));
   }
   for (int r = 0; r < rows; ++r) {
     rowY[size_t(r)] = y;
@@ -94,7 +98,7 @@ std::vector<std::vector<CellSize>> cellSizes(const SheetGrid& grid, const Contac
       CellSize& s = sizes[r][c];
       s.used = true;
       displaySize(grid[r][c]->image, opt, s.w, s.h);
-      s.titleW = font::textWidth(grid[r][c]->title, std::max(opt.titleScale, 1));
+      s.titleW = textWidth(grid[r][c]->title, titleFont(opt));
     }
   }
   return sizes;
@@ -114,7 +118,7 @@ Image composeContactSheet(const SheetGrid& grid, const ContactSheetOptions& opt,
     for (int x = 0; x < sheet.width; ++x)
       for (int c = 0; c < 3; ++c) sheet.at(x, y, c) = opt.background[c];
   if (!opt.heading.empty())
-    font::drawText(sheet, L.headingX, L.headingY, opt.heading, opt.textColor, std::max(opt.headingScale, 1));
+    draw::drawText(sheet, L.headingX, L.headingY, opt.heading, headingFont(opt), opt.textColor);
   for (size_t r = 0; r < grid.size(); ++r)
     for (size_t c = 0; c < grid[r].size(); ++c) {
       if (!grid[r][c]) continue;
@@ -125,7 +129,7 @@ Image composeContactSheet(const SheetGrid& grid, const ContactSheetOptions& opt,
         for (int x = 0; x < cr.width; ++x)
           for (int k = 0; k < 3; ++k) sheet.at(cr.x + x, cr.y + y, k) = img.at(x, y, k);
       if (!grid[r][c]->title.empty())
-        font::drawText(sheet, cr.titleX, cr.titleY, grid[r][c]->title, opt.textColor, std::max(opt.titleScale, 1));
+        draw::drawText(sheet, cr.titleX, cr.titleY, grid[r][c]->title, titleFont(opt), opt.textColor);
     }
   if (layoutOut) *layoutOut = L;
   return sheet;

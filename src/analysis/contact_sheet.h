@@ -20,7 +20,7 @@
 namespace inim {
 
 struct SheetCell {
-  std::string title;  // drawn above the image (UTF-8, see bitmap_font.h)
+  std::string title;  // drawn above the image (UTF-8)
   Image image;        // display values in [0, 1]
 };
 
@@ -28,9 +28,9 @@ struct ContactSheetOptions {
   int margin = 12;             // around the whole sheet, px
   int gap = 16;                // between cells, px
   int groupGap = 40;           // between groups (the pairs of a Fig. 11 sheet), px
-  int titleScale = 2;          // font scale of cell titles (5x7 glyphs x scale)
+  double titleSize = 15.0;     // font size of cell titles, px (DejaVu Sans, see draw/text.h)
   int titleGap = 4;            // between a title and its image, px
-  int headingScale = 3;        // font scale of the sheet heading
+  double headingSize = 20.0;   // font size of the sheet heading, px
   std::string heading;         // optional line of text at the top of the sheet
   int maxImageWidth = 0;       // > 0: larger images are downscaled (area average) to this width
   Vec3 background{1.0f, 1.0f, 1.0f};

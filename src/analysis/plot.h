@@ -1,10 +1,13 @@
 #pragma once
-// Minimal line / scatter plots rendered to an image (PNG), for the reports of validation/
-// studies ("sharpness vs depth", "brightness vs rotation angle", "RMSE vs time"), with no
-// plotting library: axes, ticks and tick labels, axis titles, a title, a legend, several
-// series, linear or log axes, and vertical / horizontal marker lines (e.g. a predicted ψ or L).
-// Text uses the built-in bitmap font (bitmap_font.h). Plus a small CSV writer for the data
-// behind each plot.
+// Figures for the reports of validation studies ("sharpness vs depth", "brightness vs
+// rotation angle", "RMSE vs time"), drawn with Cairo and Pango (src/draw) into an image (PNG).
+//
+// A plot has one pair of axes (linear or base-10 log, ticks and tick labels, titles) and
+// layers, bottom to top: a heat map (with a colour bar at the right), filled polygons, bars,
+// marker lines (vertical at an x, horizontal at a y), line / scatter series, text annotations.
+// The legend lists the named series, polygons and bars; it goes where it covers no data:
+// the free corner of the plot area, else any free place inside, else outside at the right.
+// The data behind each plot goes to CSV (csv.h, included here).
 //
 // Writers write directly to the path given; for "no partial output", pass a temporary from
 // OutputSet::add() and commit.
@@ -14,6 +17,8 @@
 
 #include <glm/glm.hpp>
 
+#include "analysis/colormap.h"
+#include "analysis/csv.h"
 #include "core/geometry.h"
 #include "core/image.h"
 
@@ -39,6 +44,47 @@ struct PlotMarker {
   double dash = 6.0;  // 0 = solid
 };
 
+// A filled polygon in data coordinates (a gamut triangle, a band), closed automatically.
+struct PlotPolygon {
+  std::string name;             // legend entry; empty: not listed
+  std::vector<double> x, y;     // the vertices, same length
+  std::optional<Vec3> color{};  // default: the palette colour after the series'
+  double alpha = 0.35;          // opacity of the fill
+  double edgeWidth = 1.0;       // outline in the solid colour, px; 0: none
+};
+
+// Bars from `base` up (or down) to y at each x: a histogram, the bins of a spectrum.
+struct PlotBars {
+  std::string name;             // legend entry; empty: not listed
+  std::vector<double> x, y;     // bar centres and heights, same length
+  double width = 0.0;           // in x units; 0: 0.8 x the smallest spacing of x (0.8 for one bar)
+  double base = 0.0;
+  std::optional<Vec3> color{};  // default: the palette colour after the series' and polygons'
+};
+
+// A grid of values shown as colours, over the data rectangle [x0, x1] x [y0, y1]: cell
+// (column c, row r) covers x0 + [c, c+1] (x1 - x0) / cols and y0 + [r, r+1] (y1 - y0) / rows,
+// so row 0 is at y0 (the bottom when y0 < y1). Non-finite values are left transparent.
+struct PlotHeatMap {
+  int cols = 0, rows = 0;
+  std::vector<double> values;      // rows * cols, row-major: values[r * cols + c]
+  double x0 = 0.0, x1 = 1.0, y0 = 0.0, y1 = 1.0;
+  std::optional<double> min{}, max{};  // colour range; default: the range of the finite values
+  ColorMap map = ColorMap::Viridis;
+  std::string label{};             // title of the colour bar
+};
+
+// Which point of a text's box sits on its anchor.
+enum class TextAnchorPoint { TopLeft, Top, TopRight, Left, Centre, Right, BottomLeft, Bottom, BottomRight };
+
+// A text annotation at a data position (left out when the position is outside the axes).
+struct PlotText {
+  double x = 0.0, y = 0.0;
+  std::string text;
+  Vec3 color{0.1f, 0.1f, 0.1f};
+  TextAnchorPoint anchor = TextAnchorPoint::BottomLeft;
+};
+
 struct PlotAxis {
   std::string title;
   std::optional<double> min, max;  // default: the data range (with markers), widened to whole ticks
@@ -50,31 +96,50 @@ struct Plot {
   std::string title;
   PlotAxis x, y;
   std::vector<PlotSeries> series;
+  std::vector<PlotPolygon> polygons;
+  std::vector<PlotBars> bars;
+  std::optional<PlotHeatMap> heatMap;
+  std::vector<PlotText> texts;
   std::vector<PlotMarker> markers;   // vertical lines at x = value
   std::vector<PlotMarker> hMarkers;  // horizontal lines at y = value
   bool legend = true;
   bool grid = true;
-  int fontScale = 2;  // 5x7 glyphs x fontScale
+  double fontSize = 13.0;  // px, of tick labels, legend and annotations (titles a little larger)
 };
 
-// Where the data goes in a rendered plot. Pixel coordinates are continuous, x to the right
-// and y down from the image's top-left corner (pixel centres at half-integers): the data
-// range [xMin, xMax] x [yMin, yMax] maps to [left, right] x [bottom, top].
+// A rectangle in pixels, [x0, x1) x [y0, y1).
+struct PixelBox {
+  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
+  bool empty() const { return !(x1 > x0 && y1 > y0); }
+  bool overlaps(const PixelBox& o) const { return !empty() && !o.empty() && x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+// Where things go in a rendered plot. Pixel coordinates are continuous, x to the right and y
+// down from the image's top-left corner (pixel centres at half-integers): the data range
+// [xMin, xMax] x [yMin, yMax] maps to [left, right] x [bottom, top] (whole pixels).
 struct PlotFrame {
   double left = 0, top = 0, right = 0, bottom = 0;
   double xMin = 0, xMax = 1, yMin = 0, yMax = 1;
   bool logX = false, logY = false;
   std::vector<double> xTicks, yTicks;
+  PixelBox legend;             // the legend's box; empty without a legend
+  bool legendOutside = false;  // no free room inside: the legend is right of the plot area
+  PixelBox colorBar;           // the heat map's colour bar; empty without a heat map
+  double cMin = 0, cMax = 1;   // the colour bar's range (cMin at its bottom)
+  std::vector<double> cTicks;
 
   double pixelX(double x) const;
   double pixelY(double y) const;
   glm::dvec2 toPixel(double x, double y) const { return {pixelX(x), pixelY(y)}; }
+  double dataX(double px) const;  // the inverse of pixelX
+  double dataY(double py) const;
   bool insideX(double x) const;  // within the shown range (and > 0 on a log axis)
   bool insideY(double y) const;
 };
 
-// The frame renderPlot() uses: data ranges, ticks and the plot area. InputError when a
-// series' x and y lengths differ or an explicit range is empty.
+// The frame renderPlot() uses: data ranges, ticks, the plot area, the legend's place (which
+// depends on where the data is drawn) and the colour bar. InputError when a layer's x and y
+// lengths differ, a heat map's size does not match its values, or an explicit range is empty.
 PlotFrame plotFrame(const Plot& plot);
 Image renderPlot(const Plot& plot);
 // renderPlot + writeImage (PNG by extension).
@@ -90,14 +155,5 @@ std::vector<double> logTicks(double lo, double hi);
 std::string formatTick(double value, double step);
 // The default colour of series i (matplotlib's "tab10" palette).
 Vec3 plotPalette(int i);
-
-// CSV (RFC 4180): fields with a comma, quote or newline are quoted, quotes doubled.
-std::string csvField(const std::string& s);
-// A number as CSV text: %.10g; "inf", "-inf" and "nan" for non-finite values.
-std::string csvNumber(double v);
-std::string csvText(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
-// Writes header + rows; std::runtime_error if the file cannot be written.
-void writeCsv(const std::string& path, const std::vector<std::string>& header,
-              const std::vector<std::vector<std::string>>& rows);
 
 }  // namespace inim

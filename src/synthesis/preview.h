@@ -9,8 +9,8 @@
 // grey), the MLA plane z = 0 (black) highlighted in red where the scene crosses it, the VCP
 // z = D_VCP (dashed blue), the central query rays from the VCP to their first hit (light
 // blue), and the first hit of every lenslet's central ray: orange for real (z > 0, in front of
-// the MLA), blue for virtual (z < 0), green on the MLA plane (|z| <= P / 2). Simple rasterised
-// lines, dots and a built-in 5x7 font: no extra dependencies.
+// the MLA), blue for virtual (z < 0), green on the MLA plane (|z| <= P / 2). Drawn with
+// Cairo and Pango (src/draw).
 #include <cstdint>
 
 #include "core/image.h"

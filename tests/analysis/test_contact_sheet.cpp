@@ -5,13 +5,17 @@
 
 #include <cmath>
 
-#include "analysis/bitmap_font.h"
 #include "analysis/contact_sheet.h"
+#include "draw/text.h"
 #include "spectral/color.h"
 
 using namespace inim;
 
 namespace {
+
+// Text sizes as the sheet lays them out: whole pixels, one line height per font.
+int lineHeight(double size) { return int(std::ceil(draw::measureText("Ag", {size}).height)); }
+int textWidth(const std::string& s, double size) { return int(std::ceil(draw::measureText(s, {size}).width)); }
 
 Image pattern(int w, int h, float seed) {
   Image img(w, h, {"R", "G", "B"});
@@ -37,57 +41,78 @@ TEST(ContactSheet, GridSizeAndCellsAsLaidOut) {
   ContactSheetOptions o;
   o.margin = 5;
   o.gap = 3;
-  o.titleScale = 1;
+  o.titleSize = 11.0;
   o.titleGap = 2;
   Image a = pattern(30, 20, 0.1f), b = pattern(50, 10, 0.2f), c = pattern(12, 25, 0.3f);
   SheetGrid grid = {{SheetCell{"a", a}, SheetCell{"b", b}}, {SheetCell{"", c}, std::nullopt}};
   SheetLayout L;
   Image sheet = composeContactSheet(grid, o, 1, &L);
-  // Columns: max(30, 12) = 30 and 50; rows: title 9 (5x7 glyphs + 2 descender rows) + 2, then
-  // max(20, 10) = 20; row 2 has no title, 25.
-  ASSERT_EQ(font::textHeight(1), 9);
+  // Columns: max(30, 12) = 30 and 50; rows: title line + 2, then max(20, 10) = 20; row 2 has
+  // no title, 25.
+  const int th = lineHeight(11.0);
+  ASSERT_GE(th, 12);
+  ASSERT_LE(th, 16);
   const int expectedW = 5 + 30 + 3 + 50 + 5;
-  const int expectedH = 5 + (9 + 2 + 20) + 3 + 25 + 5;
+  const int expectedH = 5 + (th + 2 + 20) + 3 + 25 + 5;
   EXPECT_EQ(sheet.width, expectedW);
   EXPECT_EQ(sheet.height, expectedH);
   EXPECT_EQ(L.width, expectedW);
   EXPECT_EQ(L.height, expectedH);
   ASSERT_TRUE(L.cells[0][0].used && L.cells[0][1].used && L.cells[1][0].used && !L.cells[1][1].used);
   EXPECT_EQ(L.cells[0][0].x, 5);
-  EXPECT_EQ(L.cells[0][0].y, 5 + 11);
+  EXPECT_EQ(L.cells[0][0].y, 5 + th + 2);
   EXPECT_EQ(L.cells[0][1].x, 5 + 30 + 3);
   EXPECT_EQ(L.cells[1][0].x, 5 + (30 - 12) / 2);  // centred in its column
-  EXPECT_EQ(L.cells[1][0].y, 5 + 31 + 3);
+  EXPECT_EQ(L.cells[1][0].y, 5 + th + 2 + 20 + 3);
   expectPlaced(sheet, a, L.cells[0][0].x, L.cells[0][0].y);
   expectPlaced(sheet, b, L.cells[0][1].x, L.cells[0][1].y);
   expectPlaced(sheet, c, L.cells[1][0].x, L.cells[1][0].y);
-  // The title is drawn: some dark pixel in the title band of cell (0, 0).
-  int dark = 0;
-  for (int y = L.cells[0][0].titleY; y < L.cells[0][0].titleY + 7; ++y)
-    for (int x = L.cells[0][0].titleX; x < L.cells[0][0].titleX + font::textWidth("a"); ++x)
-      dark += sheet.at(x, y, 0) < 0.5f;
-  EXPECT_GT(dark, 3);
+  // The titles are drawn: dark pixels in the title band of cell (0, 0) and of cell (0, 1),
+  // antialiased (grey levels at the glyphs' edges), and none between the bands.
+  int dark = 0, grey = 0;
+  for (int c = 0; c < 2; ++c)
+    for (int y = L.cells[0][c].titleY; y < L.cells[0][c].titleY + th; ++y)
+      for (int x = L.cells[0][c].titleX; x < L.cells[0][c].titleX + textWidth(c ? "b" : "a", 11.0); ++x) {
+        dark += sheet.at(x, y, 0) < 0.3f;
+        grey += sheet.at(x, y, 0) > 0.3f && sheet.at(x, y, 0) < 0.9f;
+      }
+  EXPECT_GT(dark, 6);
+  EXPECT_GT(grey, 2);
+  for (int y = L.cells[0][0].titleY; y < L.cells[0][0].titleY + th; ++y)
+    for (int x = L.cells[0][0].x + a.width; x < L.cells[0][1].titleX; ++x) EXPECT_EQ(sheet.at(x, y, 0), 1.0f);
   // Background elsewhere (inside the empty cell).
   EXPECT_EQ(sheet.at(L.width - 6, L.height - 6, 1), 1.0f);
 }
 
 TEST(ContactSheet, Fig11CrossPlacesEveryView) {
   ContactSheetOptions o;
-  o.titleScale = 1;
+  o.titleSize = 11.0;
   o.heading = "Fig. 11";
   Fig11Views v;
   const char* labels[] = {"0°", "-7° H", "+7° H", "+7° V", "-7° V"};
   std::optional<ViewPair>* slots[] = {&v.centre, &v.left, &v.right, &v.top, &v.bottom};
-  for (int i = 0; i < 5; ++i) *slots[i] = ViewPair{labels[i], pattern(120, 80, 0.1f * i), pattern(120, 80, 0.05f + 0.1f * i)};
+  for (int i = 0; i < 5; ++i) *slots[i] = ViewPair{labels[i], pattern(90, 80, 0.1f * i), pattern(90, 80, 0.05f + 0.1f * i)};
   SheetLayout L;
   Image sheet = composeFig11Sheet(v, o, &L);
-  // 6 columns, each as wide as the widest of its images and titles: reference columns hold
-  // the 120 px images, reconstruction columns the wider "+7° H  reconstruction" (21 glyphs).
-  const int recW = std::max(120, font::textWidth("+7° H  reconstruction", 1));
-  ASSERT_GT(recW, 120);
-  const int rowH = font::textHeight(1) + o.titleGap + 80;
-  EXPECT_EQ(sheet.width, 2 * o.margin + 3 * 120 + 3 * recW + 3 * o.gap + 2 * o.groupGap);
-  EXPECT_EQ(sheet.height, 2 * o.margin + (font::textHeight(3) + 2 * o.gap) + 3 * rowH + 2 * o.gap);
+  // 6 columns, each as wide as the widest of its 90 px images and its titles "<label>
+  // reference" and "<label>  reconstruction" (the latter wider than the images).
+  auto col = [](std::initializer_list<const char*> labels, const char* kind) {
+    int w = 90;
+    for (const char* l : labels) w = std::max(w, textWidth(std::string(l) + "  " + kind, 11.0));
+    return w;
+  };
+  const int colsW = col({"-7° H"}, "reference") + col({"-7° H"}, "reconstruction") +
+                    col({"+7° V", "0°", "-7° V"}, "reference") + col({"+7° V", "0°", "-7° V"}, "reconstruction") +
+                    col({"+7° H"}, "reference") + col({"+7° H"}, "reconstruction");
+  ASSERT_GT(col({"0°"}, "reconstruction"), 90);
+  const int rowH = lineHeight(11.0) + o.titleGap + 80;
+  EXPECT_EQ(sheet.width, 2 * o.margin + colsW + 3 * o.gap + 2 * o.groupGap);
+  EXPECT_EQ(sheet.height, 2 * o.margin + (lineHeight(o.headingSize) + 2 * o.gap) + 3 * rowH + 2 * o.gap);
+  // The heading is drawn at its place.
+  int headingInk = 0;
+  for (int y = L.headingY; y < L.headingY + lineHeight(o.headingSize); ++y)
+    for (int x = L.headingX; x < L.headingX + textWidth("Fig. 11", o.headingSize); ++x) headingInk += sheet.at(x, y, 1) < 0.5f;
+  EXPECT_GT(headingInk, 30);
   // Cross: top and bottom in the middle pair of columns, the row between holds left, centre, right.
   const int pos[5][2] = {{1, 2}, {1, 0}, {1, 4}, {0, 2}, {2, 2}};  // row, column of each reference
   for (int i = 0; i < 5; ++i) {

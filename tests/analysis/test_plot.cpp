@@ -1,5 +1,7 @@
 // Plots: the data-to-pixel transform (linear and log axes), ticks, rendering at the requested
-// size with each data point where the transform says, PNG output, and CSV text.
+// size with each data point where the transform says, tick labels and titles where they
+// belong, PNG output, determinism, and CSV text. Legend placement and the other layers:
+// test_plot_legend.cpp, test_plot_layers.cpp.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -7,12 +9,16 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "analysis/plot.h"
+#include "analysis/plot_test_util.h"
 #include "core/error.h"
 
 namespace fs = std::filesystem;
 using namespace inim;
+
+using plot_test::darkIn;
 
 TEST(Plot, CoordinateTransformLinear) {
   Plot p;
@@ -34,6 +40,14 @@ TEST(Plot, CoordinateTransformLinear) {
   const glm::dvec2 q = f.toPixel(0.0, 17.5);
   EXPECT_NEAR(q.x, f.left + 0.25 * (f.right - f.left), 1e-9);
   EXPECT_NEAR(q.y, f.bottom - 0.75 * (f.bottom - f.top), 1e-9);
+  // The inverse.
+  EXPECT_NEAR(f.dataX(q.x), 0.0, 1e-9);
+  EXPECT_NEAR(f.dataY(q.y), 17.5, 1e-9);
+  // The plot area is in whole pixels (crisp frame lines).
+  EXPECT_EQ(f.left, std::floor(f.left));
+  EXPECT_EQ(f.right, std::floor(f.right));
+  EXPECT_EQ(f.top, std::floor(f.top));
+  EXPECT_EQ(f.bottom, std::floor(f.bottom));
 }
 
 TEST(Plot, CoordinateTransformLog) {
@@ -48,6 +62,7 @@ TEST(Plot, CoordinateTransformLog) {
   EXPECT_DOUBLE_EQ(f.yMax, 0.1);
   EXPECT_NEAR(f.pixelX(1.0), f.left + (f.right - f.left) / 3.0, 1e-9);
   EXPECT_NEAR(f.pixelY(0.01), 0.5 * (f.top + f.bottom), 1e-9);
+  EXPECT_NEAR(f.dataX(f.pixelX(3.0)), 3.0, 1e-9);
   ASSERT_EQ(f.xTicks.size(), 4u);
   EXPECT_DOUBLE_EQ(f.xTicks[0], 0.1);
   EXPECT_DOUBLE_EQ(f.xTicks[3], 100.0);
@@ -116,20 +131,29 @@ TEST(Plot, RendersPointsWhereTheTransformSays) {
     const int x = int(std::floor(q.x)), y = int(std::floor(q.y));
     return Vec3(img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2));
   };
+  // 8-bit colour levels: within half a level of the colour asked for.
+  const float level = 0.5f / 255.0f + 1e-6f;
   for (size_t k = 0; k < a.x.size(); ++k) {
     const Vec3 c = colourAt(f.toPixel(a.x[k], a.y[k]));
-    EXPECT_NEAR(c.x, red.x, 1e-6);
-    EXPECT_NEAR(c.y, red.y, 1e-6);
-    EXPECT_NEAR(c.z, red.z, 1e-6);
+    EXPECT_NEAR(c.x, red.x, level);
+    EXPECT_NEAR(c.y, red.y, level);
+    EXPECT_NEAR(c.z, red.z, level);
   }
-  for (size_t k = 0; k < b.x.size(); ++k) EXPECT_NEAR(colourAt(f.toPixel(b.x[k], b.y[k])).z, blue.z, 1e-6);
-  // The vertical marker line at x = 19.
+  for (size_t k = 0; k < b.x.size(); ++k) EXPECT_NEAR(colourAt(f.toPixel(b.x[k], b.y[k])).z, blue.z, level);
+  // A marker's disc reaches its radius and no further (antialiased at the rim).
+  const glm::dvec2 c0 = f.toPixel(a.x[0], a.y[0]);
+  EXPECT_NEAR(colourAt(c0 + glm::dvec2(2.5, 0.0)).y, red.y, level);
+  EXPECT_EQ(colourAt(c0 + glm::dvec2(6.0, 0.0)).y, 1.0f);
+  // The vertical marker line at x = 19: one crisp column.
   const int mx = int(std::floor(f.pixelX(19.0)));
   const int my = int(f.bottom) - 5;
-  EXPECT_NEAR(img.at(mx, my, 1), 0.6f, 1e-6);
+  EXPECT_NEAR(img.at(mx, my, 1), 0.6f, level);
+  EXPECT_NEAR(img.at(mx, my, 0), 0.0f, level);
+  EXPECT_EQ(img.at(mx - 1, my, 0), 1.0f);
+  EXPECT_EQ(img.at(mx + 1, my, 0), 1.0f);
   // Outside the plot area the background is white (top-right corner).
   EXPECT_EQ(img.at(499, 0, 0), 1.0f);
-  // Writes a PNG of the requested size.
+  // Writes a PNG of the requested size, with the same pixels.
   const fs::path dir = fs::temp_directory_path() / ("inim_test_plot_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const std::string file = (dir / "plot.png").string();
@@ -137,6 +161,10 @@ TEST(Plot, RendersPointsWhereTheTransformSays) {
   Image back = readImage(file);
   EXPECT_EQ(back.width, 500);
   EXPECT_EQ(back.height, 360);
+  ASSERT_EQ(back.data.size(), img.data.size());
+  int differ = 0;
+  for (size_t i = 0; i < img.data.size(); ++i) differ += std::lround(back.data[i] * 255.0f) != std::lround(img.data[i] * 255.0f);
+  EXPECT_EQ(differ, 0);
   fs::remove_all(dir);
 }
 
@@ -154,6 +182,70 @@ TEST(Plot, LinesBreakAtNonFiniteValuesAndLegendDraws) {
   const glm::dvec2 on = f.toPixel(1.5, 1.5), off = f.toPixel(3.0, 3.0);
   EXPECT_LT(img.at(int(on.x), int(on.y), 0), 0.5f);
   EXPECT_GT(img.at(int(off.x), int(off.y), 0), 0.8f);
+  // The legend: a box inside the plot area holding the name and a sample of the line.
+  ASSERT_FALSE(f.legend.empty());
+  EXPECT_FALSE(f.legendOutside);
+  EXPECT_GE(f.legend.x0, f.left);
+  EXPECT_LE(f.legend.x1, f.right);
+  EXPECT_GT(darkIn(img, f.legend.x0 + 2, f.legend.y0 + 2, f.legend.x1 - 2, f.legend.y1 - 2, 0.3f), 20);
+}
+
+TEST(Plot, TickLabelsAndTitlesWhereTheyBelong) {
+  Plot p;
+  p.width = 640, p.height = 420;
+  p.x.min = 0.0, p.x.max = 10.0;
+  p.y.min = 0.0, p.y.max = 1.0;
+  p.title = "Brightness vs angle";
+  p.x.title = "angle (deg)";
+  p.y.title = "brightness";
+  const Image img = renderPlot(p);
+  const PlotFrame f = plotFrame(p);
+  ASSERT_GE(f.xTicks.size(), 3u);
+  ASSERT_GE(f.yTicks.size(), 3u);
+  const double th = 13.0 * 1.3;  // about one line of tick labels
+  // Under every x tick, a label; between two labels (halfway between ticks), none.
+  for (size_t i = 0; i < f.xTicks.size(); ++i) {
+    const double x = f.pixelX(f.xTicks[i]);
+    EXPECT_GT(darkIn(img, x - 6, f.bottom + 4, x + 6, f.bottom + 4 + th), 5) << "x tick " << f.xTicks[i];
+    if (i > 0) {
+      const double mid = 0.5 * (x + f.pixelX(f.xTicks[i - 1]));
+      EXPECT_EQ(darkIn(img, mid - 3, f.bottom + 4, mid + 3, f.bottom + 4 + th), 0) << "between x ticks";
+    }
+  }
+  // Left of every y tick, a label, vertically centred on it.
+  for (double t : f.yTicks) {
+    const double y = f.pixelY(t);
+    EXPECT_GT(darkIn(img, f.left - 40, y - 5, f.left - 4, y + 5), 5) << "y tick " << t;
+  }
+  // The title above the plot area, the x title below the tick labels, the y title at the left
+  // edge (turned: taller than wide).
+  EXPECT_GT(darkIn(img, f.left, 0, f.right, f.top - 4), 50);
+  EXPECT_GT(darkIn(img, f.left, f.bottom + 4 + th, f.right, p.height), 40);
+  int yx0 = p.width, yx1 = 0, yy0 = p.height, yy1 = 0;
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < 24; ++x)
+      if (img.at(x, y, 0) < 0.5f) yx0 = std::min(yx0, x), yx1 = std::max(yx1, x), yy0 = std::min(yy0, y), yy1 = std::max(yy1, y);
+  ASSERT_LT(yx0, yx1);
+  EXPECT_GT(yy1 - yy0, 3 * (yx1 - yx0));
+  EXPECT_NEAR(0.5 * (yy0 + yy1), 0.5 * (f.top + f.bottom), 10.0);
+  // Nothing inside the empty plot area but the grid (light grey).
+  EXPECT_EQ(darkIn(img, f.left + 1, f.top + 1, f.right - 1, f.bottom - 1, 0.8f), 0);
+}
+
+TEST(Plot, RenderingIsDeterministicAcrossThreads) {
+  Plot p;
+  p.title = "ψ/2 ± 0.5°";
+  p.x.title = "λ (nm)";
+  p.series.push_back({"a", {0.0, 1.3, 2.9, 4.1}, {0.2, 0.9, 0.4, 0.7}});
+  p.series.push_back({"b", {0.5, 2.0, 3.5}, {0.8, 0.1, 0.5}});
+  p.series[1].dash = 5.0;
+  p.markers.push_back({2.2, "L"});
+  const Image ref = renderPlot(p);
+  std::vector<Image> out(4);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) threads.emplace_back([&, t] { out[size_t(t)] = renderPlot(p); });
+  for (auto& t : threads) t.join();
+  for (const Image& img : out) EXPECT_EQ(img.data, ref.data);
 }
 
 TEST(Plot, BadInput) {
@@ -167,6 +259,12 @@ TEST(Plot, BadInput) {
   r.x.log = true;
   r.x.min = -1.0;
   EXPECT_THROW(plotFrame(r), InputError);
+  Plot h;
+  h.heatMap = PlotHeatMap{3, 2, {1, 2, 3, 4, 5}};
+  EXPECT_THROW(plotFrame(h), InputError);
+  Plot b;
+  b.bars.push_back({"bars", {1, 2}, {1}});
+  EXPECT_THROW(plotFrame(b), InputError);
   // Empty plots and single points are fine.
   Plot e;
   EXPECT_NO_THROW(renderPlot(e));

@@ -176,3 +176,33 @@ TEST(EiaSynthesis, PreviewShowsRealVirtualAndMlaCrossing) {
   writeImage(p.image, png);
   EXPECT_GT(std::filesystem::file_size(png), 1000u);
 }
+
+TEST(EiaSynthesis, PreviewLabelsAreAntialiasedTextAndDeterministic) {
+  Display disp = smallDisplay(15, 9, 9);
+  EiLayout L = computeLayout(disp);
+  MockField f({{{-5.5, 0.0, 5.0}, 1.0, Vec3(1.0f), 0.0, nullptr}, {{5.8, 0.0, -3.0}, 0.8, Vec3(1.0f), 0.0, nullptr}},
+              FieldEncoding::RGB);
+  const PreviewResult p = renderPlacementPreview(L, f, Transform(), 30.0);
+  const Image& img = p.image;
+  // Dark pixels, and grey ones (antialiased glyph edges, which a bitmap font has none of),
+  // in a band of the image.
+  auto count = [&](int y0, int y1, int& dark, int& grey) {
+    dark = grey = 0;
+    for (int y = std::max(0, y0); y < std::min(img.height, y1); ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const float v = img.at(x, y, 0) + img.at(x, y, 1) + img.at(x, y, 2);
+        dark += v < 0.9f;
+        grey += v > 1.2f && v < 2.4f && std::abs(img.at(x, y, 0) - img.at(x, y, 2)) < 0.02f;
+      }
+  };
+  int dark = 0, grey = 0;
+  count(0, 40, dark, grey);  // the views' titles, above the views
+  EXPECT_GT(dark, 200);
+  EXPECT_GT(grey, 50);
+  count(img.height - 70, img.height - 50, dark, grey);  // the colour key's names under the views
+  EXPECT_GT(dark, 200);
+  // Same pixels on one thread.
+  ThreadLimit one(1);
+  const PreviewResult again = renderPlacementPreview(L, f, Transform(), 30.0);
+  EXPECT_EQ(again.image.data, img.data);
+}
