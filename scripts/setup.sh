@@ -7,7 +7,7 @@ BUILD_DIR="${INIM_BUILD_DIR:-$ROOT/build/release}"
 
 PACKAGES=(build-essential cmake pkg-config libembree-dev libopenexr-dev libopencolorio-dev
           libglm-dev libtbb-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
-          libcli11-dev libgtest-dev libbenchmark-dev)
+          libcli11-dev libgtest-dev libbenchmark-dev opencolorio-tools)
 
 missing=()
 for p in "${PACKAGES[@]}"; do
