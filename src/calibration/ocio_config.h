@@ -1,0 +1,40 @@
+#pragma once
+// Exports a correction for OpenColorIO: a copy of the project's config with one more colour
+// space whose transform reads the exported LUT file, written beside it.
+#include <string>
+
+#include "calibration/lut3d.h"
+
+namespace inim {
+
+// Which way the LUT goes: FromReference makes converting reference -> the new space apply the
+// LUT (a LUT from desired colour to panel drive); ToReference the other way.
+enum class LutDirection { FromReference, ToReference };
+
+struct OcioColourSpaceSettings {
+  std::string name = "panel_calibrated";
+  std::string description = "Colour-corrected panel drive (inim calibration LUT)";
+  std::string lutFile;  // a file name beside the config, found through search_path "."
+  LutDirection direction = LutDirection::FromReference;
+};
+
+// Writes `configPath`: the config at `baseConfigPath` (empty: the config ColorSystem uses,
+// spectra/ocio/config.ocio unless $OCIO) plus the colour space, validated by OpenColorIO.
+// Throws InputError when the base config cannot be read or already has a space of that name.
+void writeOcioConfig(const std::string& configPath, const OcioColourSpaceSettings& space,
+                     const std::string& baseConfigPath = "");
+
+enum class LutFormat { Cube, Clf };
+
+struct CalibrationFiles {
+  std::string cube, clf, config;
+};
+
+// Writes <folder>/<stem>.cube, <folder>/<stem>.clf and <folder>/<stem>.ocio, whose colour space
+// reads the file in `configFormat`; all three are written or none (through OutputSet).
+// space.lutFile is set here.
+CalibrationFiles exportCalibration(const std::string& folder, const std::string& stem, const Lut3d& lut,
+                                   OcioColourSpaceSettings space, LutFormat configFormat = LutFormat::Clf,
+                                   const std::string& baseConfigPath = "");
+
+}  // namespace inim
