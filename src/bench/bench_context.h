@@ -11,14 +11,14 @@
 #include "display/display.h"
 #include "display/ei_layout.h"
 #include "field/field.h"
-#include "render/camera.h"
+#include "camera/fov_camera.h"
 #include "scene/analytic_scene.h"
 
 namespace inim::bench {
 
 struct SceneContext {
   std::unique_ptr<AnalyticScene> scene;
-  CameraSpec camera;
+  FovCameraSettings camera;
   std::vector<FieldRay> rays;  // one camera ray per pixel of the render
   std::vector<SampledWavelengths> lambdas;
 };

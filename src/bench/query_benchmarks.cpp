@@ -22,14 +22,16 @@ SceneContext& sceneContext() {
     c.scene = AnalyticScene::load(defaultScenePath());
     c.camera.width = 1920;
     c.camera.height = 1080;
-    ThinLensCamera camera(c.camera);
+    FovCameraModel camera(c.camera);
     c.rays.resize(size_t(c.camera.width) * c.camera.height);
     c.lambdas.resize(c.rays.size());
     for (int y = 0; y < c.camera.height; ++y)
       for (int x = 0; x < c.camera.width; ++x) {
         uint64_t id = uint64_t(y) * c.camera.width + x;
         Rng rng = Rng::forSample(1, id);
-        Ray r = camera.generateRay(x + rng.uniform(), y + rng.uniform(), {0.5f, 0.5f});
+        Ray r;
+        const float px = x + rng.uniform(), py = y + rng.uniform();
+        camera.generateRay(Vec2(px, py), Vec2(0.5f), 550.0f, r);
         c.rays[id] = {r.o, r.d, 0.0f, kInfinity, id, 0};
         c.lambdas[id] = SampledWavelengths::sampleVisible(rng.uniform());
       }
@@ -91,7 +93,7 @@ void benchRender(benchmark::State& state) {
   RenderSettings rs;
   rs.spp = 16;
   rs.progress = false;
-  ThinLensCamera camera(c.camera);
+  FovCameraModel camera(c.camera);
   for (auto _ : state) {
     RenderResult r = renderField(*c.scene, camera, rs);
     benchmark::DoNotOptimize(r.image.data.data());

@@ -2,7 +2,7 @@
 // Pinhole intrinsics with OpenCV radial-tangential distortion (k1 k2 p1 p2), as posed-photo
 // datasets store them (transforms.json, COLMAP's OPENCV model, Middlebury K).
 //
-// Pixel convention (DESIGN.md, and NeRF/Nerfstudio): pixel (i, j) covers [i, i+1) x [j, j+1)
+// Pixel convention (docs/design.md §2.4, and NeRF/Nerfstudio): pixel (i, j) covers [i, i+1) x [j, j+1)
 // with its centre at (i + 0.5, j + 0.5); row 0 is the top. cx, cy are in that convention,
 // so a centred principal point is (w/2, h/2). Normalised coordinates are OpenCV's:
 // x = (u - cx)/fx to the right, y = (v - cy)/fy downward, on the plane at unit depth.

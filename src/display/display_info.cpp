@@ -242,7 +242,7 @@ DisplayInfo derive(const Display& d) {
   r.reconstruction = gapInfo(d, L, r.focus.focalLengthMm, d.reconstructionGapMm);
   if (d.viewingDistanceMm) r.viewingZone = viewingZone(L, d.reconstructionGapMm, *d.viewingDistanceMm);
   r.depthCriterion =
-      "lateral sampling at depth z is max(P, P|z|/g) (DESIGN.md 4b); the depth range is where it "
+      "lateral sampling at depth z is max(P, P|z|/g) (docs/design.md §5.1); the depth range is where it "
       "stays <= 2P, i.e. |z| <= 2g";
   for (const auto& a : d.panel.assumptions) r.assumptions.push_back("panel: " + a);
   for (const auto& a : d.mla.assumptions) r.assumptions.push_back("mla: " + a);

@@ -1,5 +1,5 @@
 #pragma once
-// Paraxial quantities derived from a display description (DESIGN.md section 4b), as a
+// Paraxial quantities derived from a display description (docs/design.md §5.1), as a
 // struct, as JSON and as text (for `inim display info [FILE] [--json]`).
 #include <array>
 #include <optional>
@@ -36,7 +36,7 @@ struct GapInfo {
   // [left, right] in x, [top, bottom] in y. 0 for a parallel chief-ray bundle.
   std::array<double, 2> edgeChiefAngleXDeg{}, edgeChiefAngleYDeg{};
   // Depth range (criterion in depthCriterion): lateral sampling at depth z is
-  // max(P, P |z| / g) (DESIGN.md 4b); the range is where it stays <= 2 P, |z| <= 2 g.
+  // max(P, P |z| / g) (docs/design.md §5.1); the range is where it stays <= 2 P, |z| <= 2 g.
   double depthRangeMm = 0.0;
   // Depth at which one pixel's footprint through a pinhole, pixel |z| / g, reaches P.
   double pixelFootprintDepthMm = 0.0;

@@ -2,7 +2,7 @@
 // Where every elemental image (EI) and its pinhole lie: the geometry all pinhole ray
 // generation, EIA filling and EIA formation share.
 //
-// Frames (DESIGN.md section 2): display frame in mm, origin at the centre of the EIA,
+// Frames (docs/design.md §2.2): display frame in mm, origin at the centre of the EIA,
 // x right, y up, z toward the viewer; the pinhole plane is z = 0, the panel at z = -g.
 // EIA image: column 0 left, row 0 top, pixel centres at half-integers, so EIA pixel (c, r)
 // has its centre at x = (c + 0.5 - W/2) p, y = (H/2 - r - 0.5) p (p = pixel pitch).

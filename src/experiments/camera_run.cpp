@@ -113,9 +113,9 @@ std::string summaryText(const ViewRunResult& run, const ViewSettings& vs, double
     std::snprintf(buf[2], sizeof buf[2],
                   "estimator:   quadrature: %llu pixel pieces integrated (%llu strata cut by a lenslet border), "
                   "%llu pieces x primaries lost by the MLA, %llu fallbacks, %llu table/Jacobian rays\n",
-                  (unsigned long long)st.quadratureParts, (unsigned long long)st.splitStrata,
-                  (unsigned long long)st.lostParts, (unsigned long long)st.apertureFallbacks,
-                  (unsigned long long)st.apertureRays);
+                  (unsigned long long)st.quadrature.pieces, (unsigned long long)st.quadrature.splitStrata,
+                  (unsigned long long)st.quadrature.lostPieces, (unsigned long long)st.quadrature.fallbacks,
+                  (unsigned long long)st.quadrature.probeRays);
   else
     std::snprintf(buf[2], sizeof buf[2], "estimator:   %s\n", panelEstimatorName(vs.panelEstimator));
   return std::string(buf[0]) + buf[1] + buf[2];
@@ -130,7 +130,7 @@ ReferenceRunResult runReference(const ReferenceRunSettings& s,
   const Transform toDisplay = r.placement.toDisplay();
   r.camera = setupCamera(s.camera, s.reference.spp);
   const Display d = loadDisplay(displayPathOrDefault(s.displayPath));
-  const DisplayArea area = lensletArrayArea(computeLayout(d), d.mla.pitchMm);
+  const AreaMm area = computeLayout(d).activeArea();
   if (loaded) loaded(r);
   r.render = renderReference(*field.field, toDisplay, *r.camera.camera, r.camera.desc.sensor, s.reference);
   r.exposureFactor = writeExposed(r.render.image, r.camera, s.camera.out);

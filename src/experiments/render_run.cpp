@@ -13,7 +13,7 @@ RenderRunResult runRender(const RenderRunSettings& s) {
   if (s.render.spp <= 0) throw InputError("", "spp", std::to_string(s.render.spp), "a positive sample count");
   if (std::filesystem::path(s.out).extension() != ".exr")
     throw InputError("", "out", "\"" + s.out + "\"", "a file name ending in .exr");
-  const ThinLensCamera camera(s.camera);  // validates sizes and pose before any work
+  const FovCameraModel camera(s.camera);  // validates sizes and pose before any work
   RenderRunResult r;
   LoadedField field = loadField(s.fieldPath.empty() ? defaultScenePath() : s.fieldPath, "field");
   r.fieldPath = field.path;

@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "render/camera.h"
+#include "camera/fov_camera.h"
 #include "render/renderer.h"
 #include "scene/integrator.h"
 
@@ -13,7 +13,7 @@ namespace inim {
 
 struct RenderRunSettings {
   std::string fieldPath;  // scene JSON or trained model; "": scenes/paper-fig7.json
-  CameraSpec camera;
+  FovCameraSettings camera;
   RenderSettings render;
   // Integrator overrides of an analytic scene (a radiance field has none).
   std::optional<IntegratorSettings::Type> integrator;

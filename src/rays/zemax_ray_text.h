@@ -1,5 +1,5 @@
 #pragma once
-// The Zemax ray text format of the paper's ZPL macro (DESIGN.md section 4): one line per ray,
+// The Zemax ray text format of the paper's ZPL macro (docs/design.md §3.1): one line per ray,
 // "x, y, z, l, m, n" (mm and direction cosines, +z toward the viewer), "%.8f", ", " between
 // values, in ray order (rays/ray_set.h). The macro's own files are UTF-16LE with a BOM, CRLF
 // line ends and two header lines; the reader takes those and UTF-8 (with or without BOM, LF or

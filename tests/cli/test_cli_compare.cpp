@@ -1,7 +1,7 @@
 // `inim compare` and `inim lens info` through the built binary: values agree with the library,
 // options work, and bad input (size mismatch, missing file, NaN in an EXR, unknown colour
 // space, bad lens options) gives exit status 2 with a message naming the input and no output.
-// Also the lens analysis through the library: dgauss.50mm has EFL 50.36 mm (DESIGN.md 4b).
+// Also the lens analysis through the library: dgauss.50mm has EFL 50.36 mm (docs/design.md §5.1).
 #include <gtest/gtest.h>
 #include <unistd.h>
 

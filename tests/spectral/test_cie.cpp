@@ -9,7 +9,7 @@ namespace {
 // The integral of y_bar over 360-830 nm is 106.857 (pbrt-v4's CIE_Y_integral 106.856895).
 TEST(CIE, YIntegral) { EXPECT_NEAR(cie::yIntegral(), 106.856895, 1e-3); }
 
-// D65 through the CIE 1931 CMFs: XYZ = (0.9505, 1, 1.0888) within 1e-3 (DESIGN 4b).
+// D65 through the CIE 1931 CMFs: XYZ = (0.9505, 1, 1.0888) within 1e-3 (docs/design.md §5.1).
 TEST(CIE, D65WhitePoint) {
   Vec3d xyz = spectrumToXYZ(cie::D65());
   xyz /= xyz.y;

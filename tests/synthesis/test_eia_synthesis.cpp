@@ -178,7 +178,7 @@ TEST(EiaSynthesis, PreviewShowsRealVirtualAndMlaCrossing) {
 }
 
 TEST(EiaSynthesis, PreviewLabelsAreAntialiasedTextAndDeterministic) {
-  Display disp = smallDisplay(15, 9, 9);
+  Display disp = squareDisplay({.cols = 15, .rows = 9, .eiPx = 9});
   EiLayout L = computeLayout(disp);
   MockField f({{{-5.5, 0.0, 5.0}, 1.0, Vec3(1.0f), 0.0, nullptr}, {{5.8, 0.0, -3.0}, 0.8, Vec3(1.0f), 0.0, nullptr}},
               FieldEncoding::RGB);
