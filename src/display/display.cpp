@@ -21,7 +21,7 @@ const char* layoutName(EiLayoutKind k) {
 }
 
 std::string defaultDisplayPath() { return dataPath("optics/displays/paper-prototype.json"); }
-std::string displayPathOrDefault(const std::string& path) { return displayPathOrDefault(path); }
+std::string displayPathOrDefault(const std::string& path) { return path.empty() ? defaultDisplayPath() : path; }
 
 // A reference to a sub-description: an inline object, a .json path relative to the display
 // file, or a catalog name under optics/<folder>/.
