@@ -7,17 +7,6 @@
 
 namespace inim::study_detail {
 
-Display cropDisplay(const std::string& path, int cols, int rows, double generationGapMm, EiLayoutKind layout,
-                    double viewingDistanceMm) {
-  Display d = loadDisplay(path);
-  d.eiCols = std::min(cols, d.eiCols);
-  d.eiRows = std::min(rows, d.eiRows);
-  d.generationGapMm = generationGapMm;
-  d.layout = layout;
-  d.viewingDistanceMm = viewingDistanceMm;
-  return d;
-}
-
 Image synthesizeAt(const EiLayout& L, const Display& d, const Json& scene, double zMm, int spp) {
   auto field = AnalyticScene::fromJson(scene, "(study scene)");
   SynthesisSettings s;
