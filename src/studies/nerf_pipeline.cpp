@@ -456,7 +456,7 @@ void viewAt(const NerfSetup& s, const EiaStep& e, const ShownEias& shown, double
     rows.push_back(r);
     return m;
   };
-  const ImageMetrics m = add(4, "view(field EIA) vs view(analytic EIA)", sA, sF, "same camera, same samples");
+  const ImageMetrics m = add(4, "view(field EIA) vs view(analytic EIA)", sA, sF, "same camera and estimator");
   add(4, "view(analytic EIA), seed 2 vs seed 1 (its noise floor)", sA, sA2,
       "EIA and view seeds 2; the " + std::string(panelEstimatorName(v.settings.panelEstimator)) + " view (" +
           std::to_string(v.settings.spp) + " strata) has no noise of its own");
@@ -683,7 +683,7 @@ std::vector<std::string> writeReport(const StudyOptions& o, const NerfSetup& s, 
               std::to_string(v.settings.apertureGrid) + ". Capture, field and EIAs are unchanged; the view values "
               "move, and the views' noise floor (step 4, seed 2 against seed 1) is now the analytic EIA's noise "
               "alone. The verdict values before and now:",
-              values, kFootprintValues, "dB; ΔE", 2);
+              values, kFootprintValues, "", 2);
   w.text(verdictText(o, s.B, values));
   return w.commit(o.quick ? "quick form (the CI test)" : "");
 }

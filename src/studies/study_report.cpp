@@ -108,8 +108,10 @@ void ReportWriter::verdict(const std::string& criterion, const std::vector<Study
 void ReportWriter::changes(const std::string& why, const std::vector<StudyValue>& values,
                            const std::vector<EarlierValue>& before, const std::string& unit, int decimals) {
   if (before.size() != values.size()) throw std::logic_error("ReportWriter::changes: one earlier value per value");
-  std::string t = "**What changed.** " + why + "\n\n| quantity | before (" + unit + ") | now (" + unit + ") | predicted (" +
-                  unit + ") | pass |\n|---|---|---|---|---|\n";
+  const std::string inUnit = unit.empty() ? "" : " (" + unit + ")";
+  const bool bounds = !values.empty() && values.front().check != StudyValue::Check::Relative;
+  std::string t = "**What changed.** " + why + "\n\n| quantity | before" + inUnit + " | now" + inUnit + " | " +
+                  (bounds ? "bound" : "predicted") + inUnit + " | pass |\n|---|---|---|---|---|\n";
   for (size_t i = 0; i < values.size(); ++i) {
     const StudyValue& v = values[i];
     const EarlierValue& b = before[i];

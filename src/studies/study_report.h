@@ -63,7 +63,8 @@ class ReportWriter {
   // "**Verdict** (criterion): " and the verdict line of the values.
   void verdict(const std::string& criterion, const std::vector<StudyValue>& values);
   // "**What changed.** why" and a table of the values against `before` (the same quantities, in
-  // the same order): measured then and now, the prediction (then -> now where it moved).
+  // the same order): measured then and now, the prediction or bound (then -> now where it moved).
+  // An empty unit leaves the columns without one (the quantities name their own).
   void changes(const std::string& why, const std::vector<StudyValue>& values, const std::vector<EarlierValue>& before,
                const std::string& unit, int decimals = 3);
 
