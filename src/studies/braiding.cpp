@@ -211,29 +211,29 @@ struct BraidSetup {
 };
 
 BraidSetup setUp(const StudyOptions& o) {
-  BraidSetup s;
-  s.source = loadStudyDisplay(o);
-  s.d = pipelineDisplay(s.source.display, 31, 31, s.g, EiLayoutKind::ToedIn, s.D);
-  s.L = computeLayout(s.d);
-  s.f = lensletFocus(s.d.mla).focalLengthMm, s.P = s.d.mla.pitchMm;
-  s.real = RealMla::fromDisplay(s.d, s.L, s.g);
-  s.ideal = std::make_unique<IdealLensletMla>(s.L, s.P, s.f, s.g);
-  s.Lideal = s.g * s.f / (s.g - s.f), s.hPrime = s.real->rearNodalZ();
-  s.glass = coverGlassOptics(s.d, kLambdaNm);
-  s.gEff = s.glass.opticalGap(s.g);
-  s.LeffGlass = s.gEff * s.f / (s.gEff - s.f), s.zGlass = s.g * s.f / (s.gEff - s.f);
-  s.zs = o.quick ? std::vector<double>{-20, 10, 15, 21, 28, 40}
+  BraidSetup setup;
+  setup.source = loadStudyDisplay(o);
+  setup.d = pipelineDisplay(setup.source.display, 31, 31, setup.g, EiLayoutKind::ToedIn, setup.D);
+  setup.L = computeLayout(setup.d);
+  setup.f = lensletFocus(setup.d.mla).focalLengthMm, setup.P = setup.d.mla.pitchMm;
+  setup.real = RealMla::fromDisplay(setup.d, setup.L, setup.g);
+  setup.ideal = std::make_unique<IdealLensletMla>(setup.L, setup.P, setup.f, setup.g);
+  setup.Lideal = setup.g * setup.f / (setup.g - setup.f), setup.hPrime = setup.real->rearNodalZ();
+  setup.glass = coverGlassOptics(setup.d, kLambdaNm);
+  setup.gEff = setup.glass.opticalGap(setup.g);
+  setup.LeffGlass = setup.gEff * setup.f / (setup.gEff - setup.f), setup.zGlass = setup.g * setup.f / (setup.gEff - setup.f);
+  setup.zs = o.quick ? std::vector<double>{-20, 10, 15, 21, 28, 40}
                  : std::vector<double>{-30, -20, -12, 8, 10, 12.5, 15, 17, 18.5, 20, 21.5, 23.5, 27, 32, 40};
   for (int c = 0; c < kCases; ++c) {
-    s.hp[c] = mlaOf(c) == 1 ? s.hPrime : 0.0;
-    s.ge[c] = glassOf(c) ? s.gEff : s.g;
-    const double Le = s.ge[c] * s.f / (s.ge[c] - s.f);
-    s.z0[c] = Le * s.g / s.ge[c];
-    s.Lf[c] = s.hp[c] + Le;
+    setup.hp[c] = mlaOf(c) == 1 ? setup.hPrime : 0.0;
+    setup.ge[c] = glassOf(c) ? setup.gEff : setup.g;
+    const double Le = setup.ge[c] * setup.f / (setup.ge[c] - setup.f);
+    setup.z0[c] = Le * setup.g / setup.ge[c];
+    setup.Lf[c] = setup.hp[c] + Le;
   }
-  s.emitterGlass = geometryEmitter(s.d, s.L, s.g, true);
-  s.emitterNoGlass = geometryEmitter(s.d, s.L, s.g, false);
-  return s;
+  setup.emitterGlass = geometryEmitter(setup.d, setup.L, setup.g, true);
+  setup.emitterNoGlass = geometryEmitter(setup.d, setup.L, setup.g, false);
+  return setup;
 }
 
 // Per case, per depth: the facets along x (lenslet columns) and along y (rows); the mean
@@ -252,8 +252,8 @@ struct BraidMeasurement {
   std::vector<double> depths(int c) const { return column(horizontal[c], &FacetResult::facetDepth); }
   // The real lenslets' jumps against the same formula with the facet depth they show: their
   // effective image plane for an eye (spherical aberration).
-  double jumpPredMeasured(const BraidSetup& s, int c, double z) const {
-    return predictedJump(s.P, z0Meas[c], LfMeas[c], s.D, z);
+  double jumpPredMeasured(const BraidSetup& setup, int c, double z) const {
+    return predictedJump(setup.P, z0Meas[c], LfMeas[c], setup.D, z);
   }
 };
 
@@ -274,67 +274,67 @@ double meanFacetDepth(const std::vector<double>& zs, const std::vector<double>& 
   return n ? sum / n : std::nan("");
 }
 
-BraidMeasurement measure(const BraidSetup& s) {
+BraidMeasurement measure(const BraidSetup& setup) {
   BraidMeasurement m;
-  for (double z : s.zs) {
+  for (double z : setup.zs) {
     // A point: a sphere about one EI pixel's footprint at its depth (p |z| / g), so every EI
     // that sees it lights one or two pixels and its image on L is smaller than a facet.
-    const double radius = std::max(0.03, 0.75 * s.L.pixelMm * std::abs(z) / s.g);
-    const Image eia = synthesizeAt(s.L, s.d, emissiveSphereScene(radius, 1.0), z, 1);
+    const double radius = std::max(0.03, 0.75 * setup.L.pixelMm * std::abs(z) / setup.g);
+    const Image eia = synthesizeAt(setup.L, setup.d, emissiveSphereScene(radius, 1.0), z, 1);
     for (int c = 0; c < kCases; ++c) {
-      m.horizontal[c].push_back(measureFacets(s.mla(c), s.emitter(c), s.L, eia, z, s.D));
-      m.vertical[c].push_back(measureFacets(s.mla(c), s.emitter(c), s.L, eia, z, s.D, true));
+      m.horizontal[c].push_back(measureFacets(setup.mla(c), setup.emitter(c), setup.L, eia, z, setup.D));
+      m.vertical[c].push_back(measureFacets(setup.mla(c), setup.emitter(c), setup.L, eia, z, setup.D, true));
     }
   }
   for (int c = 0; c < kCases; ++c) {
-    m.LfMeas[c] = meanFacetDepth(s.zs, m.depths(c), s.Lf[c]);
-    m.z0Meas[c] = (m.LfMeas[c] - s.hp[c]) * s.g / s.ge[c];
+    m.LfMeas[c] = meanFacetDepth(setup.zs, m.depths(c), setup.Lf[c]);
+    m.z0Meas[c] = (m.LfMeas[c] - setup.hp[c]) * setup.g / setup.ge[c];
   }
   return m;
 }
 
 // The same tolerances for the display as configured (group 0) and the control (group 1); the
 // ideal lenslets' tighter than the real ones' (spherical aberration).
-std::vector<StudyValue> judge(const BraidSetup& s, const BraidMeasurement& m) {
+std::vector<StudyValue> judge(const BraidSetup& setup, const BraidMeasurement& m) {
   const double tolZero[2] = {0.10, 0.25}, tolJump[2] = {0.20, 0.35}, tolDepth[2] = {0.10, 0.25};
-  auto at = [&](const std::vector<double>& values, double z) { return atDepth(s.zs, values, z); };
+  auto at = [&](const std::vector<double>& values, double z) { return atDepth(setup.zs, values, z); };
   std::vector<StudyValue> v;
   for (int group = 0; group < 2; ++group) {
     for (int mla = 0; mla < 2; ++mla) {
       const int c = 2 * group + mla;
       const std::string n = caseName(c);
       const auto j = m.jumps(c);
-      v.push_back(compare("depth of zero braiding, " + n, zeroCrossing(s.zs, j), s.z0[c], tolZero[mla]));
-      v.push_back(compare("facet jump at z = 40 mm, " + n, at(j, 40.0), s.jumpPred(c, 40.0), tolJump[mla]));
-      v.push_back(compare("facet jump at z = 10 mm, " + n, at(j, 10.0), s.jumpPred(c, 10.0), tolJump[mla]));
-      v.push_back(compare("facet jump at z = -20 mm (virtual), " + n, at(j, -20.0), s.jumpPred(c, -20.0), tolJump[mla]));
-      v.push_back(compare("apparent depth of the facets (mean), " + n, m.LfMeas[c], s.Lf[c], tolDepth[mla]));
+      v.push_back(compare("depth of zero braiding, " + n, zeroCrossing(setup.zs, j), setup.z0[c], tolZero[mla]));
+      v.push_back(compare("facet jump at z = 40 mm, " + n, at(j, 40.0), setup.jumpPred(c, 40.0), tolJump[mla]));
+      v.push_back(compare("facet jump at z = 10 mm, " + n, at(j, 10.0), setup.jumpPred(c, 10.0), tolJump[mla]));
+      v.push_back(compare("facet jump at z = -20 mm (virtual), " + n, at(j, -20.0), setup.jumpPred(c, -20.0), tolJump[mla]));
+      v.push_back(compare("apparent depth of the facets (mean), " + n, m.LfMeas[c], setup.Lf[c], tolDepth[mla]));
     }
     // The same along y (eye scanned vertically, lenslet rows).
     for (int mla = 0; mla < 2; ++mla) {
       const int c = 2 * group + mla;
       const auto jv = m.verticalJumps(c);
       const std::string n = caseName(c);
-      v.push_back(compare("facet jump at z = 40 mm, vertical, " + n, at(jv, 40.0), s.jumpPred(c, 40.0), tolJump[mla]));
-      v.push_back(compare("facet jump at z = -20 mm, vertical, " + n, at(jv, -20.0), s.jumpPred(c, -20.0), tolJump[mla]));
+      v.push_back(compare("facet jump at z = 40 mm, vertical, " + n, at(jv, 40.0), setup.jumpPred(c, 40.0), tolJump[mla]));
+      v.push_back(compare("facet jump at z = -20 mm, vertical, " + n, at(jv, -20.0), setup.jumpPred(c, -20.0), tolJump[mla]));
     }
     const int c = 2 * group + 1;
     const std::string sfx = group == 0 ? "" : ", no cover glass";
     v.push_back(compare("facet jump at z = 40 mm, real MLA, L = its facet depth" + sfx, at(m.jumps(c), 40.0),
-                        m.jumpPredMeasured(s, c, 40.0), 0.15));
+                        m.jumpPredMeasured(setup, c, 40.0), 0.15));
     v.push_back(compare("facet jump at z = 10 mm, real MLA, L = its facet depth" + sfx, at(m.jumps(c), 10.0),
-                        m.jumpPredMeasured(s, c, 10.0), 0.15));
+                        m.jumpPredMeasured(setup, c, 10.0), 0.15));
   }
   return v;
 }
 
-void writeCsvData(ReportWriter& w, const BraidSetup& s, const BraidMeasurement& m) {
+void writeCsvData(ReportWriter& w, const BraidSetup& setup, const BraidMeasurement& m) {
   std::vector<std::vector<std::string>> rows;
   for (int c = 0; c < kCases; ++c)
-    for (size_t i = 0; i < s.zs.size(); ++i) {
+    for (size_t i = 0; i < setup.zs.size(); ++i) {
       const FacetResult &h = m.horizontal[c][i], &v = m.vertical[c][i];
-      rows.push_back({mlaOf(c) == 0 ? "ideal" : "real", glassOf(c) ? "yes" : "no", csvNumber(s.zs[i]),
-                      csvNumber(s.jumpPred(c, s.zs[i])), csvNumber(h.jump), csvNumber(h.slope),
+      rows.push_back({mlaOf(c) == 0 ? "ideal" : "real", glassOf(c) ? "yes" : "no", csvNumber(setup.zs[i]),
+                      csvNumber(setup.jumpPred(c, setup.zs[i])), csvNumber(h.jump), csvNumber(h.slope),
                       csvNumber(h.facetDepth), std::to_string(h.lenslets), csvNumber(v.jump), csvNumber(v.facetDepth)});
     }
   w.csv("braiding.csv",
@@ -343,27 +343,27 @@ void writeCsvData(ReportWriter& w, const BraidSetup& s, const BraidMeasurement& 
         rows);
 }
 
-void writePlots(ReportWriter& w, const BraidSetup& s, const BraidMeasurement& m) {
+void writePlots(ReportWriter& w, const BraidSetup& setup, const BraidMeasurement& m) {
   Plot p;
-  p.title = "Braiding: facet-to-facet jump of a point (eye at " + fixed(s.D, 0) + " mm)";
+  p.title = "Braiding: facet-to-facet jump of a point (eye at " + fixed(setup.D, 0) + " mm)";
   p.x.title = "point depth z (mm)";
   p.y.title = "jump (mm on the point's plane)";
   for (int c = 0; c < kCases; ++c) {
     std::vector<double> zc, jc;
     for (int i = 0; i <= 400; ++i) {
-      const double z = s.zs.front() + (s.zs.back() - s.zs.front()) * i / 400.0;
+      const double z = setup.zs.front() + (setup.zs.back() - setup.zs.front()) * i / 400.0;
       zc.push_back(z);
-      jc.push_back(std::abs(z) < 4.0 ? std::nan("") : s.jumpPred(c, z));
+      jc.push_back(std::abs(z) < 4.0 ? std::nan("") : setup.jumpPred(c, z));
     }
     // (the real lenslets' paraxial curve differs from the ideal one's only through H': one entry)
     PlotSeries predicted{
-        mlaOf(c) == 0 ? std::string("B(z), ") + (glassOf(c) ? "glass" : "no glass") + ", z0 = " + fixed(s.z0[c], 2)
+        mlaOf(c) == 0 ? std::string("B(z), ") + (glassOf(c) ? "glass" : "no glass") + ", z0 = " + fixed(setup.z0[c], 2)
                       : std::string(),
         zc, jc};
     predicted.markers = false;
     predicted.dash = mlaOf(c) == 0 ? 0.0 : 8.0;
     predicted.color = plotPalette(c);
-    PlotSeries measured{std::string(mlaOf(c) == 0 ? "ideal" : "real") + (glassOf(c) ? ", glass" : ", no glass"), s.zs,
+    PlotSeries measured{std::string(mlaOf(c) == 0 ? "ideal" : "real") + (glassOf(c) ? ", glass" : ", no glass"), setup.zs,
                         m.jumps(c)};
     measured.line = false;
     measured.color = plotPalette(c);
@@ -371,8 +371,8 @@ void writePlots(ReportWriter& w, const BraidSetup& s, const BraidMeasurement& m)
     p.series.push_back(measured);
   }
   p.y.min = -3.0, p.y.max = 3.5;
-  p.markers.push_back({s.z0[0], "z_g"});
-  p.markers.push_back({s.Lideal, "L"});
+  p.markers.push_back({setup.z0[0], "z_g"});
+  p.markers.push_back({setup.Lideal, "L"});
   p.hMarkers.push_back({0.0, "", Vec3(0.4f, 0.4f, 0.4f), 3.0});
   w.plot("facet_jump_vs_depth.png", p);
 
@@ -381,21 +381,21 @@ void writePlots(ReportWriter& w, const BraidSetup& s, const BraidMeasurement& m)
   q.x.title = "point depth z (mm)";
   q.y.title = "facet depth (mm)";
   for (int c = 0; c < kCases; ++c) {
-    PlotSeries traced{"traced, " + caseName(c), s.zs, m.depths(c)};
+    PlotSeries traced{"traced, " + caseName(c), setup.zs, m.depths(c)};
     traced.line = false;
     traced.color = plotPalette(c);
     q.series.push_back(traced);
   }
-  PlotSeries identity{"z (no braiding)", {s.zs.front(), s.zs.back()}, {s.zs.front(), s.zs.back()}};
+  PlotSeries identity{"z (no braiding)", {setup.zs.front(), setup.zs.back()}, {setup.zs.front(), setup.zs.back()}};
   identity.markers = false;
   identity.dash = 6.0;
   q.series.push_back(identity);
-  q.hMarkers.push_back({s.Lf[0], "L_eff " + fixed(s.Lf[0], 2)});
-  q.hMarkers.push_back({s.Lf[3], "H'+L " + fixed(s.Lf[3], 2)});
+  q.hMarkers.push_back({setup.Lf[0], "L_eff " + fixed(setup.Lf[0], 2)});
+  q.hMarkers.push_back({setup.Lf[3], "H'+L " + fixed(setup.Lf[3], 2)});
   w.plot("facet_depth.png", q);
 }
 
-std::string predictionText(const BraidSetup& s) {
+std::string predictionText(const BraidSetup& setup) {
   std::string t =
       "(paraxial). *Thin lenslets, no cover glass*: focal f at gap g, image plane L = g f / (g − f). A point at (X, z) "
       "is written into EI c (lens centre x_c) at the panel pixel on the pinhole ray through x_c. Lenslet c images that "
@@ -411,26 +411,26 @@ std::string predictionText(const BraidSetup& s) {
       "eye with a pupil smaller than a facet's spacing sees, point facets jumping by B as the eye moves.\n\n";
   t += "*In general* (as in the depth-sharpness study): the lenslets see the panel at an optical gap g_e and image it "
        "at L_e = g_e f / (g_e − f) from their viewer-side principal plane H' (z = H'; 0 for thin lenslets, " +
-       fixed(s.hPrime, 3) + " mm for the real ones), so the facets appear at L_f = H' + L_e. The synthesis's pinhole "
+       fixed(setup.hPrime, 3) + " mm for the real ones), so the facets appear at L_f = H' + L_e. The synthesis's pinhole "
        "rays run in air at g through the lens centres on z = 0; the lenslets' chief rays leave H' with the slope "
        "g / g_e times the pinhole ray's, so they rebuild a point placed at (X, z) at (X, H' + z g_e / g), and the "
        "facets line up for the target depth z_0 = L_e g / g_e. Then Q_c = x_c + (X − x_c) z_0 / z on the plane L_f, "
        "and\n\n"
        "    B(z) = P (1 − z_0/z) (D − z) / (D − L_f),   in-facet parallax dx/dE = (z − L_f)/(D − L_f)\n\n"
-       "(the apparent facet depth measured below is L_f). Without cover glass g_e = g: z_0 = L = " + fixed(s.Lideal, 2) +
-       " mm for thin and thick lenslets alike, L_f = L (ideal) or H' + L = " + fixed(s.hPrime + s.Lideal, 2) +
+       "(the apparent facet depth measured below is L_f). Without cover glass g_e = g: z_0 = L = " + fixed(setup.Lideal, 2) +
+       " mm for thin and thick lenslets alike, L_f = L (ideal) or H' + L = " + fixed(setup.hPrime + setup.Lideal, 2) +
        " mm (real). With the panel's cover glass (" +
-       (s.glass.present ? fixed(s.glass.thicknessMm, 2) + " mm of " + s.glass.material + ", n = " + fixed(s.glass.n, 4) +
+       (setup.glass.present ? fixed(setup.glass.thicknessMm, 2) + " mm of " + setup.glass.material + ", n = " + fixed(setup.glass.n, 4) +
                               " at " + fixed(kLambdaNm, 2) + " nm, the trace's wavelength"
                         : std::string("none in this display")) +
-       "), the panel is seen t (1 − 1/n) nearer: g_e = g_eff = " + fixed(s.gEff, 4) + " mm, L_eff = " +
-       fixed(s.LeffGlass, 2) + " mm, and the facets line up for **z_g = g f / (g_eff − f) = " + fixed(s.zGlass, 2) +
-       " mm** (ideal and real), where they appear at " + fixed(s.Lf[0], 2) + " mm (ideal) and H' + L_eff = " +
-       fixed(s.Lf[1], 2) + " mm (real). This is the prediction for the display as configured. A generation gap "
-       "g_gen ≠ g (the paper's " + fixed(s.source.display.generationGapMm, 1) + " mm against 4 mm) writes a point at "
+       "), the panel is seen t (1 − 1/n) nearer: g_e = g_eff = " + fixed(setup.gEff, 4) + " mm, L_eff = " +
+       fixed(setup.LeffGlass, 2) + " mm, and the facets line up for **z_g = g f / (g_eff − f) = " + fixed(setup.zGlass, 2) +
+       " mm** (ideal and real), where they appear at " + fixed(setup.Lf[0], 2) + " mm (ideal) and H' + L_eff = " +
+       fixed(setup.Lf[1], 2) + " mm (real). This is the prediction for the display as configured. A generation gap "
+       "g_gen ≠ g (the paper's " + fixed(setup.source.display.generationGapMm, 1) + " mm against 4 mm) writes a point at "
        "z_s into exactly the pixels that g_gen = g writes for z = z_s g / g_gen, so it is the same EIA with the point "
        "placed at z = z_s g / g_gen: the prediction holds with that z, and needs no separate run. Here P = " +
-       fixed(s.P, 3) + " mm, f = " + fixed(s.f, 4) + " mm, g = " + fixed(s.g, 1) + " mm, D = " + fixed(s.D, 0) + " mm.";
+       fixed(setup.P, 3) + " mm, f = " + fixed(setup.f, 4) + " mm, g = " + fixed(setup.g, 1) + " mm, D = " + fixed(setup.D, 0) + " mm.";
   return t;
 }
 
@@ -460,23 +460,23 @@ std::string methodText() {
 }
 
 // Per group (with the glass, the control without it): the predictions and the measured facets per depth.
-std::string resultTables(const BraidSetup& s, const BraidMeasurement& m) {
+std::string resultTables(const BraidSetup& setup, const BraidMeasurement& m) {
   std::string t;
   for (int group = 0; group < 2; ++group) {
     const int ci = 2 * group, cr = 2 * group + 1;
-    t += group == 0 ? "The display as configured (with the cover glass): z_0 = " + fixed(s.z0[ci], 2) + " mm, L_f = " +
-                          fixed(s.Lf[ci], 2) + " (ideal) / " + fixed(s.Lf[cr], 2) + " mm (real).\n\n"
-                    : "\nControl, cover glass switched off: z_0 = " + fixed(s.z0[ci], 2) + " mm, L_f = " +
-                          fixed(s.Lf[ci], 2) + " (ideal) / " + fixed(s.Lf[cr], 2) + " mm (real).\n\n";
+    t += group == 0 ? "The display as configured (with the cover glass): z_0 = " + fixed(setup.z0[ci], 2) + " mm, L_f = " +
+                          fixed(setup.Lf[ci], 2) + " (ideal) / " + fixed(setup.Lf[cr], 2) + " mm (real).\n\n"
+                    : "\nControl, cover glass switched off: z_0 = " + fixed(setup.z0[ci], 2) + " mm, L_f = " +
+                          fixed(setup.Lf[ci], 2) + " (ideal) / " + fixed(setup.Lf[cr], 2) + " mm (real).\n\n";
     t += "| z (mm) | predicted jump, ideal (mm) | measured, ideal (mm) | predicted, real (mm) | measured, real (mm) | "
          "predicted, real, L_f = " + fixed(m.LfMeas[cr], 2) + " (mm) | facet depth, ideal (mm) | facet depth, real (mm) | "
          "lenslets (real) | vertical jump, ideal (mm) | vertical jump, real (mm) |\n"
          "|---|---|---|---|---|---|---|---|---|---|---|\n";
-    for (size_t i = 0; i < s.zs.size(); ++i) {
-      const double z = s.zs[i];
+    for (size_t i = 0; i < setup.zs.size(); ++i) {
+      const double z = setup.zs[i];
       const FacetResult &hi = m.horizontal[ci][i], &hr = m.horizontal[cr][i];
-      t += "| " + fixed(z, 1) + " | " + fixed(s.jumpPred(ci, z), 3) + " | " + fixed(hi.jump, 3) + " | " +
-           fixed(s.jumpPred(cr, z), 3) + " | " + fixed(hr.jump, 3) + " | " + fixed(m.jumpPredMeasured(s, cr, z), 3) +
+      t += "| " + fixed(z, 1) + " | " + fixed(setup.jumpPred(ci, z), 3) + " | " + fixed(hi.jump, 3) + " | " +
+           fixed(setup.jumpPred(cr, z), 3) + " | " + fixed(hr.jump, 3) + " | " + fixed(m.jumpPredMeasured(setup, cr, z), 3) +
            " | " + fixed(hi.facetDepth, 2) + " | " + fixed(hr.facetDepth, 2) + " | " + std::to_string(hr.lenslets) +
            " | " + fixed(m.vertical[ci][i].jump, 3) + " | " + fixed(m.vertical[cr][i].jump, 3) + " |\n";
     }
@@ -485,34 +485,34 @@ std::string resultTables(const BraidSetup& s, const BraidMeasurement& m) {
              "Data: `braiding.csv`.\n\n";
 }
 
-std::string discussionText(const BraidSetup& s, const BraidMeasurement& m) {
-  const double zeroGlass = zeroCrossing(s.zs, m.jumps(0)), zeroNo = zeroCrossing(s.zs, m.jumps(2));
+std::string discussionText(const BraidSetup& setup, const BraidMeasurement& m) {
+  const double zeroGlass = zeroCrossing(setup.zs, m.jumps(0)), zeroNo = zeroCrossing(setup.zs, m.jumps(2));
   // The gap that would put the measured depth where it is: z_0 = g f / (g_e - f), L_f = g_e f / (g_e - f).
-  const double f = s.f, g = s.g;
-  return "With the cover glass the ideal facets line up at " + fixed(zeroGlass, 2) + " mm (z_g = " + fixed(s.z0[0], 2) +
-         " mm) and appear at " + fixed(m.LfMeas[0], 2) + " mm (L_eff = " + fixed(s.Lf[0], 2) + " mm); without it at " +
-         fixed(zeroNo, 2) + " mm and " + fixed(m.LfMeas[2], 2) + " mm (L = " + fixed(s.Lideal, 2) +
+  const double f = setup.f, g = setup.g;
+  return "With the cover glass the ideal facets line up at " + fixed(zeroGlass, 2) + " mm (z_g = " + fixed(setup.z0[0], 2) +
+         " mm) and appear at " + fixed(m.LfMeas[0], 2) + " mm (L_eff = " + fixed(setup.Lf[0], 2) + " mm); without it at " +
+         fixed(zeroNo, 2) + " mm and " + fixed(m.LfMeas[2], 2) + " mm (L = " + fixed(setup.Lideal, 2) +
          " mm). An earlier version of this study read the EIA pixel at the landing point on z = −g, without the glass, "
          "and compared everything with L: its numbers were those of the control (the depth-sharpness study finds the "
          "same with its slanted edge: the ideal lenslets sharpest near z_g with the glass, near L without). The "
          "ideal lenslets fall short of the paraxial depths in both cases, by more with the glass; expressed as an "
          "optical gap (z_0 = g f / (g_e − f), L_f = g_e f / (g_e − f)) both shortfalls are small gap offsets of similar "
-         "size, " + signedFixed((g * f / zeroNo + f) - g, 3) + " / " + signedFixed((g * f / zeroGlass + f) - s.gEff, 3) +
+         "size, " + signedFixed((g * f / zeroNo + f) - g, 3) + " / " + signedFixed((g * f / zeroGlass + f) - setup.gEff, 3) +
          " mm (zero without / with the glass) and " + signedFixed(m.LfMeas[2] * f / (m.LfMeas[2] - f) - g, 3) + " / " +
-         signedFixed(m.LfMeas[0] * f / (m.LfMeas[0] - f) - s.gEff, 3) +
+         signedFixed(m.LfMeas[0] * f / (m.LfMeas[0] - f) - setup.gEff, 3) +
          " mm (facet depth), which the glass amplifies because the depth is about twice as sensitive to the gap at "
-         "g_eff − f = " + fixed(s.gEff - f, 3) + " mm as at g − f = " + fixed(g - f, 3) + " mm; its cause (the spot's "
+         "g_eff − f = " + fixed(setup.gEff - f, 3) + " mm as at g − f = " + fixed(g - f, 3) + " mm; its cause (the spot's "
          "pixel quantisation, the fit windows) is not isolated here. For the thick real lenslets the paraxial zero of "
          "the jump is z_0 = L (not H' + L, as an earlier version predicted): their chief rays rebuild the point H' "
          "further out, where they also image the panel. The real lenslets' spherical aberration pulls the focus of "
          "their outer zones toward the MLA (full aperture 16.3 mm in the image-plane study, without glass), and an eye "
          "looks through every zone of a facet in turn: their facets appear at " + fixed(m.LfMeas[1], 2) +
-         " mm with the glass (paraxial " + fixed(s.Lf[1], 2) + ") and " + fixed(m.LfMeas[3], 2) +
-         " mm without (paraxial " + fixed(s.Lf[3], 2) + "). With that measured facet depth L_m in place of L_f, and "
+         " mm with the glass (paraxial " + fixed(setup.Lf[1], 2) + ") and " + fixed(m.LfMeas[3], 2) +
+         " mm without (paraxial " + fixed(setup.Lf[3], 2) + "). With that measured facet depth L_m in place of L_f, and "
          "z_0 = (L_m − H') g / g_e, their jumps follow the same formula.";
 }
 
-std::vector<std::string> writeReport(const StudyOptions& o, const BraidSetup& s, const BraidMeasurement& m,
+std::vector<std::string> writeReport(const StudyOptions& o, const BraidSetup& setup, const BraidMeasurement& m,
                                      const std::vector<StudyValue>& values) {
   ReportWriter w("braiding", o, "multifaceted braiding");
   w.section("What",
@@ -522,13 +522,13 @@ std::vector<std::string> writeReport(const StudyOptions& o, const BraidSetup& s,
             "scene, seen by a pinhole eye through the ideal (thin) and the real (refracting) lenslets — for the display "
             "as configured (the panel's cover glass included, as the view simulation models it) and, as the control, "
             "with the cover glass switched off.");
-  w.text("**Prediction** " + predictionText(s) + "\n\n");
+  w.text("**Prediction** " + predictionText(setup) + "\n\n");
   w.section("Method", methodText());
   w.results(values, "mm");
-  w.text(resultTables(s, m));
-  writeCsvData(w, s, m);
-  writePlots(w, s, m);
-  w.section("Discussion", discussionText(s, m));
+  w.text(resultTables(setup, m));
+  writeCsvData(w, setup, m);
+  writePlots(w, setup, m);
+  w.section("Discussion", discussionText(setup, m));
   w.verdict("ideal lenslets: the zero of the jump within ±10% of z_0, the mean facet depth within ±10% of L_f, the "
             "jumps within ±20% of B(z); real lenslets: ±25%, ±25% and ±35% of the same paraxial quantities "
             "(spherical aberration), and their jumps within ±15% of B(z) with their own measured facet depth; the same "
@@ -540,10 +540,10 @@ std::vector<std::string> writeReport(const StudyOptions& o, const BraidSetup& s,
 }  // namespace
 
 StudyReport runBraiding(const StudyOptions& o) {
-  const BraidSetup s = setUp(o);
-  const BraidMeasurement m = measure(s);
-  StudyReport rep = makeReport("braiding", judge(s, m));
-  rep.files = writeReport(o, s, m, rep.values);
+  const BraidSetup setup = setUp(o);
+  const BraidMeasurement m = measure(setup);
+  StudyReport rep = makeReport("braiding", judge(setup, m));
+  rep.files = writeReport(o, setup, m, rep.values);
   return rep;
 }
 

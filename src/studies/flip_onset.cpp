@@ -80,22 +80,22 @@ struct FlipSetup {
 double degrees(double rad) { return rad * 180.0 / M_PI; }
 
 FlipSetup setUp(const StudyOptions& o) {
-  FlipSetup s;
-  s.source = loadStudyDisplay(o);
-  const Display& d = s.source.display;
-  s.L = computeLayout(d);
-  s.g = d.reconstructionGapMm, s.P = d.mla.pitchMm, s.f = lensletFocus(d.mla).focalLengthMm;
-  s.glass = coverGlassOptics(d, kLambdaNm);
-  s.gEff = s.glass.opticalGap(s.g);
-  s.wEi = s.L.eiW * s.L.pixelMm;
+  FlipSetup setup;
+  setup.source = loadStudyDisplay(o);
+  const Display& d = setup.source.display;
+  setup.L = computeLayout(d);
+  setup.g = d.reconstructionGapMm, setup.P = d.mla.pitchMm, setup.f = lensletFocus(d.mla).focalLengthMm;
+  setup.glass = coverGlassOptics(d, kLambdaNm);
+  setup.gEff = setup.glass.opticalGap(setup.g);
+  setup.wEi = setup.L.eiW * setup.L.pixelMm;
   // psi / 2: the chief ray through the lens centre (the nodal point on z = 0) meets the emitter
   // at the EI's edge. Without glass at g (docs/design.md); through the glass the emitter is seen
   // at the optical gap g_eff (paraxial; the exact plate shifts the crossing by < 0.01 deg here).
-  s.predNo = degrees(std::atan(s.P / (2.0 * s.g)));
-  s.predGlass = degrees(std::atan(s.P / (2.0 * s.gEff)));
-  s.predNoW = degrees(std::atan(s.wEi / (2.0 * s.g)));
-  s.predGlassW = degrees(std::atan(s.wEi / (2.0 * s.gEff)));
-  return s;
+  setup.predNo = degrees(std::atan(setup.P / (2.0 * setup.g)));
+  setup.predGlass = degrees(std::atan(setup.P / (2.0 * setup.gEff)));
+  setup.predNoW = degrees(std::atan(setup.wEi / (2.0 * setup.g)));
+  setup.predGlassW = degrees(std::atan(setup.wEi / (2.0 * setup.gEff)));
+  return setup;
 }
 
 // The own-EI fraction against angle (0 to 12 deg in 0.1 deg steps) through the centre lenslet.
@@ -106,25 +106,25 @@ struct FlipCurves {
   double flip[4] = {0, 0, 0, 0};  // the 50% crossing of each curve
 };
 
-FlipCurves measureCurves(const FlipSetup& s) {
-  const Display& d = s.source.display;
-  const IdealLensletMla ideal(s.L, s.P, s.f, s.g);
-  const auto real = RealMla::fromDisplay(d, s.L, s.g);
-  const auto emGlass = geometryEmitter(d, s.L, s.g, true), emNo = geometryEmitter(d, s.L, s.g, false);
+FlipCurves measureCurves(const FlipSetup& setup) {
+  const Display& d = setup.source.display;
+  const IdealLensletMla ideal(setup.L, setup.P, setup.f, setup.g);
+  const auto real = RealMla::fromDisplay(d, setup.L, setup.g);
+  const auto emGlass = geometryEmitter(d, setup.L, setup.g, true), emNo = geometryEmitter(d, setup.L, setup.g, false);
   const MlaModel* mla[4] = {&ideal, real.get(), &ideal, real.get()};
   const PanelEmitter* emitter[4] = {emGlass.get(), emGlass.get(), emNo.get(), emNo.get()};
-  const int k = s.L.eiCols / 2, l = s.L.eiRows / 2;
+  const int k = setup.L.eiCols / 2, l = setup.L.eiRows / 2;
   FlipCurves c;
   for (int i = 0; i <= 120; ++i) {
     const double t = 0.1 * i;
     c.angle.push_back(t);
-    for (int m = 0; m < 4; ++m) c.fraction[m].push_back(ownEiFraction(*mla[m], *emitter[m], s.L, s.P, k, l, t));
+    for (int m = 0; m < 4; ++m) c.fraction[m].push_back(ownEiFraction(*mla[m], *emitter[m], setup.L, setup.P, k, l, t));
   }
   for (int m = 0; m < 4; ++m) c.flip[m] = halfCrossing(c.angle, c.fraction[m]);
   return c;
 }
 
-void writeData(ReportWriter& w, const FlipSetup& s, const FlipCurves& c) {
+void writeData(ReportWriter& w, const FlipSetup& setup, const FlipCurves& c) {
   std::vector<std::vector<std::string>> rows;
   for (size_t i = 0; i < c.angle.size(); ++i)
     rows.push_back({csvNumber(c.angle[i]), csvNumber(c.fraction[0][i]), csvNumber(c.fraction[1][i]),
@@ -135,7 +135,7 @@ void writeData(ReportWriter& w, const FlipSetup& s, const FlipCurves& c) {
         rows);
 
   Plot plot;
-  plot.title = "Flip onset, g = " + fixed(s.g, 2) + " mm";
+  plot.title = "Flip onset, g = " + fixed(setup.g, 2) + " mm";
   plot.x.title = "viewing angle (deg)";
   plot.y.title = "own-EI fraction";
   plot.x.min = 0.0, plot.x.max = 12.0, plot.y.min = 0.0, plot.y.max = 1.3;
@@ -147,35 +147,35 @@ void writeData(ReportWriter& w, const FlipSetup& s, const FlipCurves& c) {
     series.color = plotPalette(m);
     plot.series.push_back(series);
   }
-  plot.markers.push_back({s.predGlass, "psi/2 glass"});
-  plot.markers.push_back({s.predNo, "psi/2"});
+  plot.markers.push_back({setup.predGlass, "psi/2 glass"});
+  plot.markers.push_back({setup.predNo, "psi/2"});
   plot.hMarkers.push_back({0.5, "50%", Vec3(0.4f, 0.4f, 0.4f), 4.0});
   w.plot("flip_onset.png", plot);
 }
 
-std::string predictionText(const FlipSetup& s) {
+std::string predictionText(const FlipSetup& setup) {
   return "The flip happens at half the viewing angle ψ/2, where the chief ray through the lens centre (the nodal "
          "point, on z = 0) meets the emitter at the edge of the lenslet's EI. Without cover glass the emitter is at "
          "g: ψ/2 = atan(P / 2g) (docs/design.md). The panel's cover glass (" +
-         (s.glass.present ? fixed(s.glass.thicknessMm, 2) + " mm of " + s.glass.material + ", n = " + fixed(s.glass.n, 4) +
+         (setup.glass.present ? fixed(setup.glass.thicknessMm, 2) + " mm of " + setup.glass.material + ", n = " + fixed(setup.glass.n, 4) +
                                 " at 550 nm, on the emitting plane"
                           : std::string("none in this display")) +
          ") bends the ray toward the normal inside the plate, so it reaches the emitter nearer the axis: "
          "(g − t) tan θ + t tan θ_glass, paraxially g_eff tan θ with the optical gap g_eff = g − t (1 − 1/n). "
-         "The flip moves out to ψ/2 = atan(P / 2 g_eff). Display `" + s.source.path + "`: P = " + fixed(s.P, 4) +
-         " mm, g = " + fixed(s.g, 4) + " mm, f = " + fixed(s.f, 4) + " mm, g_eff = " + fixed(s.gEff, 4) +
-         " mm, so ψ/2 = **" + fixed(s.predGlass, 3) + "°** for the display as configured and " + fixed(s.predNo, 3) +
+         "The flip moves out to ψ/2 = atan(P / 2 g_eff). Display `" + setup.source.path + "`: P = " + fixed(setup.P, 4) +
+         " mm, g = " + fixed(setup.g, 4) + " mm, f = " + fixed(setup.f, 4) + " mm, g_eff = " + fixed(setup.gEff, 4) +
+         " mm, so ψ/2 = **" + fixed(setup.predGlass, 3) + "°** for the display as configured and " + fixed(setup.predNo, 3) +
          "° without the glass (the control). The formula takes the EI as wide as the lens pitch; the paper's "
-         "parallel layout makes the EIs " + fixed(s.wEi, 4) + " mm wide, and the centre lenslet's own EI is centred on "
-         "it, so the own-EI criterion below crosses at atan(w / 2 g_eff) = " + fixed(s.predGlassW, 3) + "° (" +
-         fixed(s.predNoW, 3) + "° without glass), " + fixed(100.0 * (s.predGlassW / s.predGlass - 1.0), 1) +
+         "parallel layout makes the EIs " + fixed(setup.wEi, 4) + " mm wide, and the centre lenslet's own EI is centred on "
+         "it, so the own-EI criterion below crosses at atan(w / 2 g_eff) = " + fixed(setup.predGlassW, 3) + "° (" +
+         fixed(setup.predNoW, 3) + "° without glass), " + fixed(100.0 * (setup.predGlassW / setup.predGlass - 1.0), 1) +
          "% below; the verdict keeps the formula with P.";
 }
 
-std::string methodText(const FlipSetup& s) {
+std::string methodText(const FlipSetup& setup) {
   return "(that of `tests/view/test_flip_onset.cpp`). For each viewing angle θ from 0° to 12° in 0.1° steps, a "
          "parallel bundle of 48 × 48 rays, coming from the +x side at θ in the x-z plane, fills the centre lenslet (" +
-         std::to_string(s.L.eiCols / 2) + ", " + std::to_string(s.L.eiRows / 2) + ") and is traced backward to the "
+         std::to_string(setup.L.eiCols / 2) + ", " + std::to_string(setup.L.eiRows / 2) + ") and is traced backward to the "
          "emitting plane z = −g at 550 nm (`MlaModel::traceToPanel`; the real MLA with stochastic Fresnel, fixed "
          "seed), then to the emitter by `PanelEmitter::emissionPointPx`, the view simulation's own code: refracted at "
          "the top of the cover glass and carried down through it, or, for the control, with the emitter's cover glass "
@@ -184,9 +184,9 @@ std::string methodText(const FlipSetup& s) {
          "downward 50% crossing, interpolated linearly between the 0.1° samples.";
 }
 
-std::vector<std::string> writeReport(const StudyOptions& o, const FlipSetup& s, const FlipCurves& c,
+std::vector<std::string> writeReport(const StudyOptions& o, const FlipSetup& setup, const FlipCurves& c,
                                      const std::vector<StudyValue>& values) {
-  const Display& d = s.source.display;
+  const Display& d = setup.source.display;
   ReportWriter w("flip-onset", o, "flip onset");
   w.section("What",
             "Turning the display, the view through a lenslet stops showing the lenslet's own elemental image (EI) and "
@@ -195,14 +195,14 @@ std::vector<std::string> writeReport(const StudyOptions& o, const FlipSetup& s, 
                 (d.mla.material.empty() ? std::string("PMMA") : d.mla.material) +
                 ") lenslet array, at the reconstruction gap, for the display as configured (the panel's cover glass "
                 "included, as the view simulation models it) and, as the control, with the cover glass switched off.");
-  w.section("Prediction", predictionText(s));
-  w.text("**Method** " + methodText(s) + "\n\n");
+  w.section("Prediction", predictionText(setup));
+  w.text("**Method** " + methodText(setup) + "\n\n");
   w.results(values, "deg");
-  w.text("Against the own-EI width w = " + fixed(s.wEi, 4) + " mm: ideal MLA " + fixed(c.flip[0], 3) + "° against " +
-         fixed(s.predGlassW, 3) + "° with the glass (" + fixed(100.0 * (c.flip[0] / s.predGlassW - 1.0), 1) + "%), " +
-         fixed(c.flip[2], 3) + "° against " + fixed(s.predNoW, 3) + "° without (" +
-         fixed(100.0 * (c.flip[2] / s.predNoW - 1.0), 1) + "%).\n\n");
-  writeData(w, s, c);
+  w.text("Against the own-EI width w = " + fixed(setup.wEi, 4) + " mm: ideal MLA " + fixed(c.flip[0], 3) + "° against " +
+         fixed(setup.predGlassW, 3) + "° with the glass (" + fixed(100.0 * (c.flip[0] / setup.predGlassW - 1.0), 1) + "%), " +
+         fixed(c.flip[2], 3) + "° against " + fixed(setup.predNoW, 3) + "° without (" +
+         fixed(100.0 * (c.flip[2] / setup.predNoW - 1.0), 1) + "%).\n\n");
+  writeData(w, setup, c);
   w.text("![own-EI fraction vs angle](flip_onset.png)\n\nData: `flip_onset.csv` (angle_deg, own-EI fraction of the "
          "ideal and the real MLA with the cover glass, and of both without it).\n\n");
   w.verdict("tolerance ±10% of ψ/2, with the glass against atan(P / 2 g_eff), without it against atan(P / 2g)",
@@ -213,13 +213,13 @@ std::vector<std::string> writeReport(const StudyOptions& o, const FlipSetup& s, 
 }  // namespace
 
 StudyReport runFlipOnset(const StudyOptions& o) {
-  const FlipSetup s = setUp(o);
-  const FlipCurves c = measureCurves(s);
-  StudyReport rep = makeReport("flip-onset", {compare("flip angle, ideal MLA", c.flip[0], s.predGlass, 0.10),
-                                              compare("flip angle, real MLA", c.flip[1], s.predGlass, 0.10),
-                                              compare("flip angle, ideal MLA, no cover glass", c.flip[2], s.predNo, 0.10),
-                                              compare("flip angle, real MLA, no cover glass", c.flip[3], s.predNo, 0.10)});
-  rep.files = writeReport(o, s, c, rep.values);
+  const FlipSetup setup = setUp(o);
+  const FlipCurves c = measureCurves(setup);
+  StudyReport rep = makeReport("flip-onset", {compare("flip angle, ideal MLA", c.flip[0], setup.predGlass, 0.10),
+                                              compare("flip angle, real MLA", c.flip[1], setup.predGlass, 0.10),
+                                              compare("flip angle, ideal MLA, no cover glass", c.flip[2], setup.predNo, 0.10),
+                                              compare("flip angle, real MLA, no cover glass", c.flip[3], setup.predNo, 0.10)});
+  rep.files = writeReport(o, setup, c, rep.values);
   return rep;
 }
 

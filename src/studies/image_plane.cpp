@@ -106,19 +106,19 @@ struct PlaneSetup {
 double fullApertureDeg(double P, double g) { return degrees(std::atan(P / (2.0 * g))); }
 
 PlaneSetup setUp(const StudyOptions& o) {
-  PlaneSetup s;
-  s.source = loadStudyDisplay(o);
-  const Display& d = s.source.display;
-  s.L = computeLayout(d);
-  s.f = lensletFocus(d.mla).focalLengthMm, s.P = d.mla.pitchMm;
-  s.hPrime = RealMla::fromDisplay(d, s.L, s.g0)->rearNodalZ();
-  s.Lpred = s.hPrime + s.g0 * s.f / (s.g0 - s.f);
-  s.glass = coverGlassOptics(d, float(kLambdaNm));
-  s.gEff = s.glass.opticalGap(s.g0);
-  s.LpredGlass = s.hPrime + s.gEff * s.f / (s.gEff - s.f);
-  s.fullDeg = fullApertureDeg(s.P, s.g0);
-  s.fullDegGlass = fullApertureDeg(s.P, s.gEff);  // the rim seen through the glass, in air
-  return s;
+  PlaneSetup setup;
+  setup.source = loadStudyDisplay(o);
+  const Display& d = setup.source.display;
+  setup.L = computeLayout(d);
+  setup.f = lensletFocus(d.mla).focalLengthMm, setup.P = d.mla.pitchMm;
+  setup.hPrime = RealMla::fromDisplay(d, setup.L, setup.g0)->rearNodalZ();
+  setup.Lpred = setup.hPrime + setup.g0 * setup.f / (setup.g0 - setup.f);
+  setup.glass = coverGlassOptics(d, float(kLambdaNm));
+  setup.gEff = setup.glass.opticalGap(setup.g0);
+  setup.LpredGlass = setup.hPrime + setup.gEff * setup.f / (setup.gEff - setup.f);
+  setup.fullDeg = fullApertureDeg(setup.P, setup.g0);
+  setup.fullDegGlass = fullApertureDeg(setup.P, setup.gEff);  // the rim seen through the glass, in air
+  return setup;
 }
 
 // At g = 4 mm: the bundles' sharpest planes and their RMS radius (um) against z, paraxial and
@@ -128,11 +128,11 @@ struct PlaneAtGap {
   std::vector<double> z, rParax, rFull, rParaxGlass, rFullGlass;
 };
 
-PlaneAtGap measureAtGap(const PlaneSetup& s) {
-  const auto mla = RealMla::fromDisplay(s.source.display, s.L, s.g0);
-  const Bundle parax = traceBundle(*mla, s.L, s.g0, 1.0), full = traceBundle(*mla, s.L, s.g0, s.fullDeg);
-  const Bundle paraxG = traceBundle(*mla, s.L, s.g0, 1.0, &s.glass);
-  const Bundle fullG = traceBundle(*mla, s.L, s.g0, s.fullDegGlass, &s.glass);
+PlaneAtGap measureAtGap(const PlaneSetup& setup) {
+  const auto mla = RealMla::fromDisplay(setup.source.display, setup.L, setup.g0);
+  const Bundle parax = traceBundle(*mla, setup.L, setup.g0, 1.0), full = traceBundle(*mla, setup.L, setup.g0, setup.fullDeg);
+  const Bundle paraxG = traceBundle(*mla, setup.L, setup.g0, 1.0, &setup.glass);
+  const Bundle fullG = traceBundle(*mla, setup.L, setup.g0, setup.fullDegGlass, &setup.glass);
   PlaneAtGap m;
   m.zParax = sharpestPlane(parax), m.zFull = sharpestPlane(full);
   m.zParaxGlass = sharpestPlane(paraxG), m.zFullGlass = sharpestPlane(fullG);
@@ -153,26 +153,26 @@ struct GapSweep {
   std::vector<double> predicted, paraxial, full;
 };
 
-GapSweep sweepGap(const PlaneSetup& s) {
+GapSweep sweepGap(const PlaneSetup& setup) {
   GapSweep w;
   for (double g : w.gaps) {
-    const auto mla = RealMla::fromDisplay(s.source.display, s.L, g);
-    w.predicted.push_back(mla->rearNodalZ() + g * s.f / (g - s.f));
-    w.paraxial.push_back(sharpestPlane(traceBundle(*mla, s.L, g, 1.0)));
-    w.full.push_back(sharpestPlane(traceBundle(*mla, s.L, g, fullApertureDeg(s.P, g))));
+    const auto mla = RealMla::fromDisplay(setup.source.display, setup.L, g);
+    w.predicted.push_back(mla->rearNodalZ() + g * setup.f / (g - setup.f));
+    w.paraxial.push_back(sharpestPlane(traceBundle(*mla, setup.L, g, 1.0)));
+    w.full.push_back(sharpestPlane(traceBundle(*mla, setup.L, g, fullApertureDeg(setup.P, g))));
   }
   return w;
 }
 
-std::vector<StudyValue> judge(const PlaneSetup& s, const PlaneAtGap& m, const GapSweep& w) {
+std::vector<StudyValue> judge(const PlaneSetup& setup, const PlaneAtGap& m, const GapSweep& w) {
   std::vector<StudyValue> v;
-  v.push_back(compare("sharpest plane at g = 4 mm, paraxial (1°)", m.zParax, s.Lpred, 0.02));
-  v.push_back(compare("sharpest plane at g = 4 mm, full aperture (" + fixed(s.fullDeg, 2) + "°)", m.zFull, s.Lpred, 0.25));
+  v.push_back(compare("sharpest plane at g = 4 mm, paraxial (1°)", m.zParax, setup.Lpred, 0.02));
+  v.push_back(compare("sharpest plane at g = 4 mm, full aperture (" + fixed(setup.fullDeg, 2) + "°)", m.zFull, setup.Lpred, 0.25));
   for (size_t i = 0; i < w.gaps.size(); ++i)
     v.push_back(compare("paraxial sharpest plane at g = " + fixed(w.gaps[i], 2) + " mm", w.paraxial[i], w.predicted[i], 0.02));
-  v.push_back(compare("sharpest plane at g = 4 mm under the cover glass, paraxial (1°)", m.zParaxGlass, s.LpredGlass, 0.02));
-  v.push_back(compare("sharpest plane at g = 4 mm under the cover glass, full aperture (" + fixed(s.fullDegGlass, 2) + "°)",
-                      m.zFullGlass, s.LpredGlass, 0.25));
+  v.push_back(compare("sharpest plane at g = 4 mm under the cover glass, paraxial (1°)", m.zParaxGlass, setup.LpredGlass, 0.02));
+  v.push_back(compare("sharpest plane at g = 4 mm under the cover glass, full aperture (" + fixed(setup.fullDegGlass, 2) + "°)",
+                      m.zFullGlass, setup.LpredGlass, 0.25));
   return v;
 }
 
@@ -183,7 +183,7 @@ PlotSeries curve(const std::string& name, const std::vector<double>& x, const st
   return c;
 }
 
-void writeData(ReportWriter& w, const PlaneSetup& s, const PlaneAtGap& m, const GapSweep& sweep) {
+void writeData(ReportWriter& w, const PlaneSetup& setup, const PlaneAtGap& m, const GapSweep& sweep) {
   std::vector<std::vector<std::string>> rows;
   for (size_t i = 0; i < m.z.size(); ++i)
     rows.push_back({csvNumber(m.z[i]), csvNumber(m.rParax[i]), csvNumber(m.rFull[i]), csvNumber(m.rParaxGlass[i]),
@@ -198,11 +198,11 @@ void writeData(ReportWriter& w, const PlaneSetup& s, const PlaneAtGap& m, const 
   p.y.title = "RMS radius (um)";
   p.y.log = true;
   p.y.min = 0.1, p.y.max = 1e5;
-  p.series = {curve("paraxial 1 deg", m.z, m.rParax, 0.0), curve("full " + fixed(s.fullDeg, 1) + " deg", m.z, m.rFull, 0.0),
+  p.series = {curve("paraxial 1 deg", m.z, m.rParax, 0.0), curve("full " + fixed(setup.fullDeg, 1) + " deg", m.z, m.rFull, 0.0),
               curve("paraxial 1 deg, cover glass", m.z, m.rParaxGlass, 8.0),
-              curve("full " + fixed(s.fullDegGlass, 1) + " deg, cover glass", m.z, m.rFullGlass, 8.0)};
-  p.markers.push_back({s.Lpred, "H'+L " + fixed(s.Lpred, 2)});
-  p.markers.push_back({s.LpredGlass, "H'+L_eff " + fixed(s.LpredGlass, 2)});
+              curve("full " + fixed(setup.fullDegGlass, 1) + " deg, cover glass", m.z, m.rFullGlass, 8.0)};
+  p.markers.push_back({setup.Lpred, "H'+L " + fixed(setup.Lpred, 2)});
+  p.markers.push_back({setup.LpredGlass, "H'+L_eff " + fixed(setup.LpredGlass, 2)});
   w.plot("rms_vs_z.png", p);
 
   rows.clear();
@@ -218,35 +218,35 @@ void writeData(ReportWriter& w, const PlaneSetup& s, const PlaneAtGap& m, const 
   for (int i = 0; i <= 80; ++i) {
     const double g = 3.45 + (5.05 - 3.45) * i / 80.0;
     gx.push_back(g);
-    gy.push_back(s.hPrime + g * s.f / (g - s.f));
+    gy.push_back(setup.hPrime + g * setup.f / (g - setup.f));
   }
   PlotSeries paraxial{"traced, paraxial", sweep.gaps, sweep.paraxial};
   paraxial.line = false;
   PlotSeries full{"traced, full aperture", sweep.gaps, sweep.full};
   full.line = false;
   q.series = {curve("H' + g f / (g - f)", gx, gy, 0.0), paraxial, full};
-  q.markers.push_back({s.f, "f = " + fixed(s.f, 3) + " mm"});
+  q.markers.push_back({setup.f, "f = " + fixed(setup.f, 3) + " mm"});
   w.plot("plane_vs_gap.png", q);
 }
 
-std::string predictionText(const PlaneSetup& s) {
+std::string predictionText(const PlaneSetup& setup) {
   return "Thick-lens imaging: g is measured from the panel-side principal plane H (z = 0), the image distance "
-         "L = g f / (g − f) from the viewer-side one H' (z = T (n − 1)/n = " + fixed(s.hPrime, 3) +
-         " mm). Display `" + s.source.path + "`: f = " + fixed(s.f, 4) + " mm, so at g = 4 mm the sharpest plane is at "
-         "H' + L = **" + fixed(s.Lpred, 2) + " mm** for a panel point in air.\n\n"
+         "L = g f / (g − f) from the viewer-side one H' (z = T (n − 1)/n = " + fixed(setup.hPrime, 3) +
+         " mm). Display `" + setup.source.path + "`: f = " + fixed(setup.f, 4) + " mm, so at g = 4 mm the sharpest plane is at "
+         "H' + L = **" + fixed(setup.Lpred, 2) + " mm** for a panel point in air.\n\n"
          "*The panel's cover glass.* The lens-law checks (g = 4 mm, and the gap sweep) deliberately leave the panel's "
          "cover glass out: the point emits in air at z = −g, so that they test the lenslet alone. The display as "
          "configured has " +
-         (s.glass.present ? fixed(s.glass.thicknessMm, 2) + " mm of " + s.glass.material + " (n = " + fixed(s.glass.n, 4) +
+         (setup.glass.present ? fixed(setup.glass.thicknessMm, 2) + " mm of " + setup.glass.material + " (n = " + fixed(setup.glass.n, 4) +
                                 " at 587.56 nm)"
                           : std::string("no cover glass")) +
          " on the emitting plane, which the view simulation refracts every ray through (`PanelEmitter`); seen "
-         "through it the point sits t (1 − 1/n) nearer, at the optical gap g_eff = " + fixed(s.gEff, 4) +
-         " mm, and the lenslet images it at H' + g_eff f / (g_eff − f) = **" + fixed(s.LpredGlass, 2) +
+         "through it the point sits t (1 − 1/n) nearer, at the optical gap g_eff = " + fixed(setup.gEff, 4) +
+         " mm, and the lenslet images it at H' + g_eff f / (g_eff − f) = **" + fixed(setup.LpredGlass, 2) +
          " mm** (g = 4 mm). That is checked separately: the same point emitting under the plate.";
 }
 
-std::string methodText(const PlaneSetup& s) {
+std::string methodText(const PlaneSetup& setup) {
   return "(that of `tests/mla/test_reference_image_plane.cpp`). A point on the panel (z = −g) under the centre lenslet "
          "emits 41 × 41 rays, uniform in the tangents of half-angles up to 1° (paraxial) or up to atan(P / 2g) (the full "
          "aperture); each is traced forward through the real lenslet at n_d (587.56 nm, Weighted Fresnel) and kept if "
@@ -254,18 +254,18 @@ std::string methodText(const PlaneSetup& s) {
          "planes of constant z; the sharpest plane is the minimum over z ∈ [5, 120] mm in 0.05 mm steps. The gap sweep "
          "rebuilds the MLA at each g. Under the cover glass (g = 4 mm only), each ray keeps its direction in air and "
          "crosses the plate from the point at the angle Snell's law gives (the angles of the bundle are those in air: "
-         "up to 1° and up to atan(P / 2 g_eff) = " + fixed(s.fullDegGlass, 2) +
+         "up to 1° and up to atan(P / 2 g_eff) = " + fixed(setup.fullDegGlass, 2) +
          "°, the lens rim seen through the plate), leaving the plate's top at z = −g + t.";
 }
 
-std::vector<std::string> writeReport(const StudyOptions& o, const PlaneSetup& s, const PlaneAtGap& m,
+std::vector<std::string> writeReport(const StudyOptions& o, const PlaneSetup& setup, const PlaneAtGap& m,
                                      const GapSweep& sweep, const std::vector<StudyValue>& values) {
   ReportWriter w("image-plane", o, "reference image plane");
   w.section("What",
             "Where a lenslet of the real (refracting) MLA images a panel point: the plane in front of the display where "
             "a reconstructed point is sharpest, and how it moves with the gap g.");
-  w.section("Prediction", predictionText(s));
-  w.text("**Method** " + methodText(s) + "\n\n");
+  w.section("Prediction", predictionText(setup));
+  w.text("**Method** " + methodText(setup) + "\n\n");
   w.results(values, "mm");
   std::string t = "Full aperture against the gap (no tolerance: spherical aberration of a plano-convex lenslet pulls the "
                   "sharpest plane toward the MLA):\n\n| g (mm) | predicted (mm) | paraxial (mm) | full aperture (mm) |\n"
@@ -274,7 +274,7 @@ std::vector<std::string> writeReport(const StudyOptions& o, const PlaneSetup& s,
     t += "| " + fixed(sweep.gaps[i], 2) + " | " + fixed(sweep.predicted[i], 2) + " | " + fixed(sweep.paraxial[i], 2) +
          " | " + fixed(sweep.full[i], 2) + " |\n";
   w.text(t);
-  writeData(w, s, m, sweep);
+  writeData(w, setup, m, sweep);
   w.text("\n![RMS radius vs z](rms_vs_z.png)\n\n![sharpest plane vs gap](plane_vs_gap.png)\n\n"
          "Data: `rms_vs_z.csv` (z_mm, RMS radius in µm, paraxial and full aperture), `plane_vs_gap.csv`.\n\n");
   w.text("Under the cover glass, the full aperture's sharpest plane is " + fixed(m.zFullGlass, 2) + " mm against " +
@@ -289,11 +289,11 @@ std::vector<std::string> writeReport(const StudyOptions& o, const PlaneSetup& s,
 }  // namespace
 
 StudyReport runImagePlane(const StudyOptions& o) {
-  const PlaneSetup s = setUp(o);
-  const PlaneAtGap m = measureAtGap(s);
-  const GapSweep sweep = sweepGap(s);
-  StudyReport rep = makeReport("image-plane", judge(s, m, sweep));
-  rep.files = writeReport(o, s, m, sweep, rep.values);
+  const PlaneSetup setup = setUp(o);
+  const PlaneAtGap m = measureAtGap(setup);
+  const GapSweep sweep = sweepGap(setup);
+  StudyReport rep = makeReport("image-plane", judge(setup, m, sweep));
+  rep.files = writeReport(o, setup, m, sweep, rep.values);
   return rep;
 }
 

@@ -123,7 +123,7 @@ Image eiaCrop(const EiLayout& L, const Image& panelRgb, double xMm, double yMm, 
 
 // One line of the results: a comparison of step `step`.
 struct Row {
-  Row(int s, std::string c) : step(s), comparison(std::move(c)) {}
+  Row(int stepNumber, std::string what) : step(stepNumber), comparison(std::move(what)) {}
   int step;
   std::string comparison;
   double psnr = std::nan(""), ssim = std::nan(""), deMean = std::nan(""), deP95 = std::nan("");
@@ -195,18 +195,18 @@ ThinLensCamera captureCamera(const CaptureSettings& cs, const CaptureResult& cap
   return ThinLensCamera(spec);
 }
 
-CaptureStep captureStep(const NerfSetup& s, std::vector<Row>& rows, Timings& time) {
+CaptureStep captureStep(const NerfSetup& setup, std::vector<Row>& rows, Timings& time) {
   CaptureStep c;
   auto t0 = Clock::now();
-  c.settings.views = s.B.views;
-  c.settings.width = s.B.width;
-  c.settings.height = s.B.height;
-  c.settings.spp = s.B.captureSpp;
+  c.settings.views = setup.B.views;
+  c.settings.width = setup.B.width;
+  c.settings.height = setup.B.height;
+  c.settings.spp = setup.B.captureSpp;
   c.settings.target = kCaptureTarget;
-  c.settings.sceneFile = s.scenePath;
+  c.settings.sceneFile = setup.scenePath;
   c.settings.seed = 1;
   c.settings.progress = false;
-  c.capture = captureScene(*s.scene, c.settings, (s.scratch / "capture").string());
+  c.capture = captureScene(*setup.scene, c.settings, (setup.scratch / "capture").string());
   time.capture = since(t0);
 
   DatasetOptions dopt;
@@ -215,20 +215,20 @@ CaptureStep captureStep(const NerfSetup& s, std::vector<Row>& rows, Timings& tim
   dopt.sceneBox = kTrainBox;
   dopt.nearPlane = 10.0;  // the box clips the rays; the pose-based estimate of far is too short for it
   dopt.farPlane = 1000.0;
-  c.data = loadDataset((s.scratch / "capture").string(), dopt);
+  c.data = loadDataset((setup.scratch / "capture").string(), dopt);
 
   // Capture noise: frame 1 (index 0, held out) against a render with truthSpp samples.
   t0 = Clock::now();
   const ThinLensCamera camera = captureCamera(c.settings, c.capture, 0);
   RenderSettings rs;
-  rs.spp = s.B.truthSpp;
+  rs.spp = setup.B.truthSpp;
   rs.seed = 977;
   rs.progress = false;
-  c.truth0 = photoValues(renderField(*s.scene, camera, rs).image);
+  c.truth0 = photoValues(renderField(*setup.scene, camera, rs).image);
   time.truth = since(t0);
   const Image& photo0 = c.data.frames[0].image;
-  Row r{1, "capture photo (frame 1, " + std::to_string(s.B.captureSpp) + " spp, 8-bit) vs " +
-               std::to_string(s.B.truthSpp) + "-spp render"};
+  Row r{1, "capture photo (frame 1, " + std::to_string(setup.B.captureSpp) + " spp, 8-bit) vs " +
+               std::to_string(setup.B.truthSpp) + "-spp render"};
   r.psnr = psnr(photo0, c.truth0);
   r.ssim = ssim(photo0, c.truth0).value;
   r.pixels = int64_t(photo0.width) * photo0.height;
@@ -260,13 +260,13 @@ TrainConfig trainConfig(const Budget& B, const Dataset& data) {
   return tc;
 }
 
-FieldStep fieldStep(const NerfSetup& s, const CaptureStep& c, std::vector<Row>& rows, Timings& time) {
+FieldStep fieldStep(const NerfSetup& setup, const CaptureStep& c, std::vector<Row>& rows, Timings& time) {
   FieldStep step;
   const auto t0 = Clock::now();
   VoxelGrid grid;
   {
     const TrainingRays rays = datasetRays(c.data, c.data.train);
-    step.stats = train(grid, rays, trainConfig(s.B, c.data));
+    step.stats = train(grid, rays, trainConfig(setup.B, c.data));
   }
   time.train = since(t0);
   step.field = std::make_unique<RadianceField>(std::move(grid));
@@ -284,13 +284,13 @@ FieldStep fieldStep(const NerfSetup& s, const CaptureStep& c, std::vector<Row>& 
   Row r{2, "field vs held-out photos (" + std::to_string(c.data.test.size()) + " views)"};
   r.psnr = step.heldPsnr;
   r.ssim = step.heldSsim;
-  r.pixels = int64_t(c.data.test.size()) * s.B.width * s.B.height;
+  r.pixels = int64_t(c.data.test.size()) * setup.B.width * setup.B.height;
   r.note = std::to_string(step.stats.iterations) + " iterations, " + fixed(time.train, 0) + " s";
   rows.push_back(r);
-  Row t{2, "field vs " + std::to_string(s.B.truthSpp) + "-spp render (frame 1)"};
+  Row t{2, "field vs " + std::to_string(setup.B.truthSpp) + "-spp render (frame 1)"};
   t.psnr = psnr(field0, c.truth0);
   t.ssim = ssim(field0, c.truth0).value;
-  t.pixels = int64_t(s.B.width) * s.B.height;
+  t.pixels = int64_t(setup.B.width) * setup.B.height;
   t.note = "the field against the truth, not the noisy photo";
   rows.push_back(t);
   return step;
@@ -336,26 +336,26 @@ void compareDepths(const Image& analytic, const Image& field, DepthStats& all, D
   fillDepthStats(dObj, objects);
 }
 
-EiaStep eiaStep(const NerfSetup& s, const RadianceField& field, std::vector<Row>& rows, Timings& time) {
+EiaStep eiaStep(const NerfSetup& setup, const RadianceField& field, std::vector<Row>& rows, Timings& time) {
   EiaStep e;
   auto t0 = Clock::now();
   SynthesisSettings sa;
-  sa.spp = s.B.eiaSpp;
+  sa.spp = setup.B.eiaSpp;
   sa.seed = 1;
   sa.autoExposure = true;
   sa.aovs = true;
   sa.progress = false;
-  e.analytic = synthesizeEia(s.L, s.display.panel, *s.scene, sa);
+  e.analytic = synthesizeEia(setup.L, setup.display.panel, *setup.scene, sa);
   time.eiaAnalytic = since(t0);
   t0 = Clock::now();
   SynthesisSettings sf = sa;
   sf.spp = 1;
   sf.autoExposure = false;
   sf.exposure = e.analytic.stats.exposureUsed;
-  e.field = synthesizeEia(s.L, s.display.panel, field, sf);
+  e.field = synthesizeEia(setup.L, setup.display.panel, field, sf);
   time.eiaField = since(t0);
-  e.encAnalytic = encodeForPanel(e.analytic.eia, s.display.panel.eotf);
-  e.encField = encodeForPanel(e.field.eia, s.display.panel.eotf);
+  e.encAnalytic = encodeForPanel(e.analytic.eia, setup.display.panel.eotf);
+  e.encField = encodeForPanel(e.field.eia, setup.display.panel.eotf);
   e.mask = eiaSceneMask(e.analytic.eia);
   Row r{3, "field EIA vs analytic EIA"};
   r.psnr = e.psnr = psnr(e.encAnalytic, e.encField, 1.0, &e.mask);
@@ -373,13 +373,13 @@ EiaStep eiaStep(const NerfSetup& s, const RadianceField& field, std::vector<Row>
   s2.seed = 2;
   s2.autoExposure = false;
   s2.exposure = e.analytic.stats.exposureUsed;
-  e.analytic2 = synthesizeEia(s.L, s.display.panel, *s.scene, s2);
-  const Image enc2 = encodeForPanel(e.analytic2.eia, s.display.panel.eotf);
+  e.analytic2 = synthesizeEia(setup.L, setup.display.panel, *setup.scene, s2);
+  const Image enc2 = encodeForPanel(e.analytic2.eia, setup.display.panel.eotf);
   Row floor{3, "analytic EIA, seed 2 vs seed 1 (its noise floor)"};
   floor.psnr = psnr(e.encAnalytic, enc2, 1.0, &e.mask);
   floor.ssim = ssim(e.encAnalytic, enc2, {}, &e.mask).value;
   floor.pixels = e.mask.count();
-  floor.note = std::to_string(s.B.eiaSpp) + " spp each";
+  floor.note = std::to_string(setup.B.eiaSpp) + " spp each";
   rows.push_back(floor);
   const double mseFT = meanSquaredError(e.encAnalytic, e.encField, &e.mask) -
                        0.5 * meanSquaredError(e.encAnalytic, enc2, &e.mask);
@@ -405,14 +405,14 @@ struct ViewStep {
 // The camera of the view at `angle` deg: quick, a thin lens framing the small display crop
 // (0.25 mm per pixel on the MLA plane, f/4, 3 mm pupil) at the camera's distance; full, the
 // camera description's own, turned by the display pose.
-std::unique_ptr<CameraModel> viewCamera(const NerfSetup& s, double angle) {
-  if (s.B.eiCols > 0) return axialThinLens(s.camDesc.distanceMm, 0.0, s.B.viewWidth, s.B.viewWidth / 2, 0.25);
+std::unique_ptr<CameraModel> viewCamera(const NerfSetup& setup, double angle) {
+  if (setup.B.eiCols > 0) return axialThinLens(setup.camDesc.distanceMm, 0.0, setup.B.viewWidth, setup.B.viewWidth / 2, 0.25);
   DisplayPose pose;
   pose.rotHDeg = angle;
-  pose.distanceMm = s.camDesc.distanceMm;
+  pose.distanceMm = setup.camDesc.distanceMm;
   ViewCameraOptions co;
-  co.width = s.B.viewWidth;
-  return makeViewCamera(s.camDesc, pose, co);
+  co.width = setup.B.viewWidth;
+  return makeViewCamera(setup.camDesc, pose, co);
 }
 
 // The display showing each EIA: the analytic one (seeds 1 and 2) and the field's.
@@ -421,24 +421,24 @@ struct ShownEias {
 };
 
 // One angle: the three views and the reference, one exposure for all, the comparisons as rows.
-void viewAt(const NerfSetup& s, const EiaStep& e, const ShownEias& shown, double angle, ViewStep& v,
+void viewAt(const NerfSetup& setup, const EiaStep& e, const ShownEias& shown, double angle, ViewStep& v,
             std::vector<Row>& rows) {
   const DisplayModel &dmA = shown.analytic, &dmF = shown.field, &dmA2 = shown.analytic2;
-  const auto camera = viewCamera(s, angle);
-  const CameraSensor& sensor = s.camDesc.sensor;
+  const auto camera = viewCamera(setup, angle);
+  const CameraSensor& sensor = setup.camDesc.sensor;
   const ViewResult vA = renderView(*camera, sensor, *dmA.mla, *dmA.panel, dmA.area, v.settings);
   const ViewResult vF = renderView(*camera, sensor, *dmF.mla, *dmF.panel, dmA.area, v.settings);
   ViewSettings seed2 = v.settings;
   seed2.seed = 2;
   const ViewResult vA2 = renderView(*camera, sensor, *dmA2.mla, *dmA2.panel, dmA.area, seed2);
   ReferenceSettings rs;
-  rs.spp = s.B.refSpp;
+  rs.spp = setup.B.refSpp;
   rs.seed = 1;
   rs.progress = false;
-  const ViewResult ref = renderReference(*s.scene, Placement{}.toDisplay(), *camera, sensor, rs);
+  const ViewResult ref = renderReference(*setup.scene, Placement{}.toDisplay(), *camera, sensor, rs);
   // One exposure for all, as `inim fig11`: the reference in the panel's units (the EIA's
   // exposure x peak luminance), auto-exposed; that factor applies to every view.
-  const Image refCdM2 = scaledImage(ref.image, e.analytic.stats.exposureUsed * s.display.panel.peakLuminanceCdM2);
+  const Image refCdM2 = scaledImage(ref.image, e.analytic.stats.exposureUsed * setup.display.panel.peakLuminanceCdM2);
   const double k = exposureFactor(refCdM2, sensor, Exposure{});
   const Image sA = cameraRgbToSrgb(scaledImage(vA.image, k), sensor);
   const Image sF = cameraRgbToSrgb(scaledImage(vF.image, k), sensor);
@@ -468,18 +468,18 @@ void viewAt(const NerfSetup& s, const EiaStep& e, const ShownEias& shown, double
   }
 }
 
-ViewStep viewStep(const NerfSetup& s, const EiaStep& e, std::vector<Row>& rows, Timings& time) {
+ViewStep viewStep(const NerfSetup& setup, const EiaStep& e, std::vector<Row>& rows, Timings& time) {
   const auto t0 = Clock::now();
   ViewStep v;
-  v.settings.spp = s.B.viewStrata;
+  v.settings.spp = setup.B.viewStrata;
   v.settings.seed = 1;
   v.settings.progress = false;
   const ShownEias shown{
-      makeDisplayModel(s.display, s.L, colorImage(e.analytic.eia), "(analytic EIA)", MlaKind::Real),
-      makeDisplayModel(s.display, s.L, colorImage(e.field.eia), "(field EIA)", MlaKind::Real),
-      makeDisplayModel(s.display, s.L, colorImage(e.analytic2.eia), "(analytic EIA, seed 2)", MlaKind::Real)};
-  viewAt(s, e, shown, 0.0, v, rows);
-  if (s.B.sideView) viewAt(s, e, shown, 7.0, v, rows);
+      makeDisplayModel(setup.display, setup.L, colorImage(e.analytic.eia), "(analytic EIA)", MlaKind::Real),
+      makeDisplayModel(setup.display, setup.L, colorImage(e.field.eia), "(field EIA)", MlaKind::Real),
+      makeDisplayModel(setup.display, setup.L, colorImage(e.analytic2.eia), "(analytic EIA, seed 2)", MlaKind::Real)};
+  viewAt(setup, e, shown, 0.0, v, rows);
+  if (setup.B.sideView) viewAt(setup, e, shown, 7.0, v, rows);
   time.views = since(t0);
   return v;
 }
@@ -541,11 +541,11 @@ void writePsnrPlot(ReportWriter& w, const std::vector<Row>& rows) {
   w.plot("psnr_per_step.png", p);
 }
 
-void writeStrip(ReportWriter& w, const NerfSetup& s, const EiaStep& e, const ViewStep& v) {
-  const int zoom = 2, cw = 12 * s.L.eiW, ch = 9 * s.L.eiH;
+void writeStrip(ReportWriter& w, const NerfSetup& setup, const EiaStep& e, const ViewStep& v) {
+  const int zoom = 2, cw = 12 * setup.L.eiW, ch = 9 * setup.L.eiH;
   SheetGrid g(1);
-  g[0].push_back(SheetCell{"analytic EIA (crop)", eiaCrop(s.L, e.encAnalytic, 15.0, -5.0, cw, ch, zoom)});
-  g[0].push_back(SheetCell{"field EIA (crop)", eiaCrop(s.L, e.encField, 15.0, -5.0, cw, ch, zoom)});
+  g[0].push_back(SheetCell{"analytic EIA (crop)", eiaCrop(setup.L, e.encAnalytic, 15.0, -5.0, cw, ch, zoom)});
+  g[0].push_back(SheetCell{"field EIA (crop)", eiaCrop(setup.L, e.encField, 15.0, -5.0, cw, ch, zoom)});
   g[0].push_back(SheetCell{"view of analytic EIA", v.viewAnalytic});
   g[0].push_back(SheetCell{"view of field EIA", v.viewField});
   g[0].push_back(SheetCell{"reference (scene)", v.reference});
@@ -554,21 +554,21 @@ void writeStrip(ReportWriter& w, const NerfSetup& s, const EiaStep& e, const Vie
   w.image("strip.png", composeContactSheet(g, so));
 }
 
-std::string predictionText(const NerfSetup& s, const RadianceField& field) {
+std::string predictionText(const NerfSetup& setup, const RadianceField& field) {
   const VoxelGrid& grid = field.grid();
   return "No closed form: this is a measurement of the chain. What to expect: the trained field differs from the "
          "photos by the capture's Monte Carlo noise plus what the grid cannot represent (a voxel grid of about " +
          fixed(double(grid.res.x), 0) + " vertices across " + fixed(grid.hi.x - grid.lo.x, 0) + " mm, i.e. " +
          fixed((grid.hi.x - grid.lo.x) / std::max(1, grid.res.x - 1), 2) + " mm cells, against a lens pitch P = " +
-         fixed(s.display.mla.pitchMm, 2) + " mm), view-dependent effects (the brass coin's mirror image, the yellow "
+         fixed(setup.display.mla.pitchMm, 2) + " mm), view-dependent effects (the brass coin's mirror image, the yellow "
          "filter) and the photos' 8-bit sRGB; the field's EIA inherits that error on every EI pixel; the display then "
          "blurs both EIAs alike (each lenslet shows one facet of about P), so in structure (SSIM) the views of the two "
          "EIAs should agree better than the EIAs themselves, while their PSNR also carries the analytic EIA's Monte "
          "Carlo noise seen through the display (the view itself, integrated by quadrature, adds none).";
 }
 
-std::string methodText(const NerfSetup& s, const CaptureStep& c, const EiaStep& e, const ViewStep& v) {
-  const Budget& B = s.B;
+std::string methodText(const NerfSetup& setup, const CaptureStep& c, const EiaStep& e, const ViewStep& v) {
+  const Budget& B = setup.B;
   std::string t;
   t += "1. *Capture* (`captureScene`): " + std::to_string(B.views) + " views of " + std::to_string(B.width) + " × " +
        std::to_string(B.height) + " px, " + std::to_string(B.captureSpp) + " spp, horizontal field of view 40°, "
@@ -583,7 +583,7 @@ std::string methodText(const NerfSetup& s, const CaptureStep& c, const EiaStep& 
        "x −110…110, y −75…75, z −64…46 mm (the backdrop at z = −60 mm included: every display ray that misses the "
        "objects ends on it). Held-out PSNR / SSIM against the held-out photos (as `inim eval`), and the field's "
        "render of view 1 against its " + std::to_string(B.truthSpp) + "-spp truth.\n";
-  const std::string lenslets = std::to_string(s.display.eiCols) + " × " + std::to_string(s.display.eiRows) + " lenslets";
+  const std::string lenslets = std::to_string(setup.display.eiCols) + " × " + std::to_string(setup.display.eiRows) + " lenslets";
   t += "3. *EIA* (`synthesizeEia`, identity placement: the capture is in mm): the display " +
        (B.eiCols > 0 ? "cropped to its central " + lenslets + " (quick run)" : "in full (" + lenslets + ")") +
        ". The analytic EIA with " + std::to_string(B.eiaSpp) + " spp and automatic exposure (" +
@@ -594,9 +594,9 @@ std::string methodText(const NerfSetup& s, const CaptureStep& c, const EiaStep& 
        "the analytic EIA's own noise, and with it an estimate of the field EIA against the exact, noise-free EIA: "
        "MSE(F, A1) − MSE(A1, A2) / 2 (independent noise of equal variance in A1 and A2).\n";
   t += "4. *View* (`renderView`, as `inim fig11`): the paper prototype's real refracting MLA and RGB-stripe subpixels, " +
-       (B.eiCols > 0 ? "a thin-lens camera (f = 12 mm, f/4) at " + fixed(s.camDesc.distanceMm, 0) +
-                           " mm framing the crop (0.25 mm per pixel on the MLA plane) with the sensor of " + s.camDesc.name
-                     : "camera " + s.camDesc.name + " at " + fixed(s.camDesc.distanceMm, 0) + " mm") +
+       (B.eiCols > 0 ? "a thin-lens camera (f = 12 mm, f/4) at " + fixed(setup.camDesc.distanceMm, 0) +
+                           " mm framing the crop (0.25 mm per pixel on the MLA plane) with the sensor of " + setup.camDesc.name
+                     : "camera " + setup.camDesc.name + " at " + fixed(setup.camDesc.distanceMm, 0) + " mm") +
        ", " + std::to_string(B.viewWidth) + " px wide, at 0°" + (B.sideView ? " and turned 7° H" : "") +
        "; the estimator is `inim view`'s default, " + panelEstimatorName(v.settings.panelEstimator) +
        " (each pixel's area in " + std::to_string(v.settings.spp) + " strata, the aperture on a grid of " +
@@ -661,7 +661,7 @@ std::string verdictText(const StudyOptions& o, const Budget& B, const std::vecto
 // became Quadrature (validation/nerf-pipeline/report.md of that version).
 const std::vector<EarlierValue> kFootprintValues = {{21.14, 19.0}, {19.46, 17.0}, {18.59, 16.5}, {8.21, 10.0}};
 
-std::vector<std::string> writeReport(const StudyOptions& o, const NerfSetup& s, const std::vector<Row>& rows,
+std::vector<std::string> writeReport(const StudyOptions& o, const NerfSetup& setup, const std::vector<Row>& rows,
                                      const CaptureStep& c, const FieldStep& f, const EiaStep& e, const ViewStep& v,
                                      const Timings& time, const std::vector<StudyValue>& values) {
   ReportWriter w("nerf-pipeline", o, "the NeRF workflow against exact ground truth");
@@ -670,12 +670,12 @@ std::vector<std::string> writeReport(const StudyOptions& o, const NerfSetup& s, 
             "display's EIA from the field, look at the display — run in software on the analytic scene "
             "`scenes/paper-fig7.json`, so that every step can be compared with the same step done with the scene "
             "itself (exact geometry, spectral materials). The table gives the error each step adds.");
-  w.section("Prediction", predictionText(s, *f.field));
-  w.text("**Method.**\n\n" + methodText(s, c, e, v));
+  w.section("Prediction", predictionText(setup, *f.field));
+  w.text("**Method.**\n\n" + methodText(setup, c, e, v));
   w.text(resultText(rows, f, e, time));
   writeCsvData(w, rows, e);
   writePsnrPlot(w, rows);
-  writeStrip(w, s, e, v);
+  writeStrip(w, setup, e, v);
   if (!o.quick)
     w.changes("The views were rendered with the Footprint estimator at 16 spp; they now use `inim view`'s default, "
               "the " + std::string(panelEstimatorName(v.settings.panelEstimator)) + " estimator (no noise) at " +
@@ -684,7 +684,7 @@ std::vector<std::string> writeReport(const StudyOptions& o, const NerfSetup& s, 
               "move, and the views' noise floor (step 4, seed 2 against seed 1) is now the analytic EIA's noise "
               "alone. The verdict values before and now:",
               values, kFootprintValues, "", 2);
-  w.text(verdictText(o, s.B, values));
+  w.text(verdictText(o, setup.B, values));
   return w.commit(o.quick ? "quick form (the CI test)" : "");
 }
 
@@ -692,16 +692,16 @@ std::vector<std::string> writeReport(const StudyOptions& o, const NerfSetup& s, 
 
 StudyReport runNerfPipeline(const StudyOptions& o) {
   const auto start = Clock::now();
-  const NerfSetup s(o);
+  const NerfSetup setup(o);
   std::vector<Row> rows;
   Timings time;
-  const CaptureStep capture = captureStep(s, rows, time);
-  const FieldStep field = fieldStep(s, capture, rows, time);
-  const EiaStep eia = eiaStep(s, *field.field, rows, time);
-  const ViewStep view = viewStep(s, eia, rows, time);
+  const CaptureStep capture = captureStep(setup, rows, time);
+  const FieldStep field = fieldStep(setup, capture, rows, time);
+  const EiaStep eia = eiaStep(setup, *field.field, rows, time);
+  const ViewStep view = viewStep(setup, eia, rows, time);
   time.total = since(start);
   StudyReport rep = makeReport("nerf-pipeline", judge(o.quick, field, eia, view));
-  rep.files = writeReport(o, s, rows, capture, field, eia, view, time, rep.values);
+  rep.files = writeReport(o, setup, rows, capture, field, eia, view, time, rep.values);
   return rep;
 }
 

@@ -7,12 +7,12 @@
 namespace inim::study_detail {
 
 StudyDisplay loadStudyDisplay(const StudyOptions& o) {
-  StudyDisplay s;
-  s.path = displayPathOrDefault(o.displayPath);
-  s.display = loadDisplay(s.path);
-  if (s.display.mla.lattice != Mla::Lattice::Square)
-    throw InputError(s.path, "mla.lattice", "\"hex\"", "a square-lattice display (the studies sample square cells)");
-  return s;
+  StudyDisplay loaded;
+  loaded.path = displayPathOrDefault(o.displayPath);
+  loaded.display = loadDisplay(loaded.path);
+  if (loaded.display.mla.lattice != Mla::Lattice::Square)
+    throw InputError(loaded.path, "mla.lattice", "\"hex\"", "a square-lattice display (the studies sample square cells)");
+  return loaded;
 }
 
 Display centralCrop(Display d, int cols, int rows) {
