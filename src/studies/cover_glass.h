@@ -2,19 +2,14 @@
 // The panel's cover glass as the studies use it (not part of the public interface): its optics
 // (display/cover_glass.h) and an emitter that refracts through it.
 #include <memory>
-#include <string>
 
 #include "core/image.h"
 #include "display/cover_glass.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
-#include "spectral/dispersion.h"
 #include "view/panel_emitter.h"
 
 namespace inim::study_detail {
-
-using inim::CoverGlassOptics;
-using inim::coverGlassOptics;
 
 // A PanelEmitter used for its geometry only: where a ray that reached the emitting plane meets
 // the emitter (PanelEmitter::emissionPointPx: refracted through the cover glass when `glass` is

@@ -15,13 +15,16 @@ struct StudyOptions {
   bool quick = false;       // fewer depths, smaller images, fewer samples (the CI tests)
 };
 
-// One compared quantity of a study.
+// One compared quantity of a study: against a prediction within a relative tolerance, or
+// against a one-sided bound.
 struct StudyValue {
+  enum class Check { Relative, AtLeast, AtMost };
   std::string name;
   double measured = 0.0;
-  double predicted = 0.0;
-  double tolerance = 0.0;  // relative: pass when |measured - predicted| <= tolerance * |predicted|
+  double predicted = 0.0;  // the prediction; for a bound, the bound
+  double tolerance = 0.0;  // Relative: pass when |measured - predicted| <= tolerance * |predicted|
   bool pass = false;
+  Check check = Check::Relative;  // AtLeast: pass when measured >= predicted; AtMost: <=
 };
 
 struct StudyReport {

@@ -7,24 +7,13 @@
 
 namespace inim::study_detail {
 
-Display cropDisplay(const std::string& path, int cols, int rows, double generationGapMm, EiLayoutKind layout,
-                    double viewingDistanceMm) {
-  Display d = loadDisplay(path);
-  d.eiCols = std::min(cols, d.eiCols);
-  d.eiRows = std::min(rows, d.eiRows);
-  d.generationGapMm = generationGapMm;
-  d.layout = layout;
-  d.viewingDistanceMm = viewingDistanceMm;
-  return d;
-}
-
 Image synthesizeAt(const EiLayout& L, const Display& d, const Json& scene, double zMm, int spp) {
   auto field = AnalyticScene::fromJson(scene, "(study scene)");
-  SynthesisSettings s;
-  s.placement.translateMm = Vec3d(0.0, 0.0, zMm);
-  s.spp = spp;
-  s.progress = false;
-  return synthesizeEia(L, d.panel, *field, s).eia;
+  SynthesisSettings settings;
+  settings.placement.translateMm = Vec3d(0.0, 0.0, zMm);
+  settings.spp = spp;
+  settings.progress = false;
+  return synthesizeEia(L, d.panel, *field, settings).eia;
 }
 
 Json litRectangleScene(double wMm, double hMm, const Json& reflectance, double rotateZDeg) {

@@ -1,10 +1,9 @@
 #pragma once
-// Helpers the pipeline studies share (depth-sharpness, braiding, telecentric): a crop of a
-// display, an EIA synthesised from an analytic scene placed at a depth (synthesis/), a thin-lens
+// Helpers the pipeline studies share (depth-sharpness, braiding, telecentric, nerf-pipeline): an
+// EIA synthesised from an analytic scene placed at a depth (synthesis/), the scenes, a thin-lens
 // viewing camera aimed along the display axis, and image measurements (luminance, where a
 // camera pixel looks on a plane). Not part of the public interface.
 #include <memory>
-#include <string>
 
 #include "camera/camera_model.h"
 #include "core/image.h"
@@ -13,12 +12,6 @@
 #include "display/ei_layout.h"
 
 namespace inim::study_detail {
-
-// The display of `path` reduced to the central cols x rows EIs (same panel, MLA, pixel and
-// lens pitch), rays generated at `generationGapMm`, EI layout `layout` (toed-in for a viewer at
-// viewingDistanceMm).
-Display cropDisplay(const std::string& path, int cols, int rows, double generationGapMm, EiLayoutKind layout,
-                    double viewingDistanceMm);
 
 // The EIA (panel resolution, linear drive R, G, B) of the analytic scene `scene` (JSON, in mm)
 // translated by (0, 0, zMm), exposure 1, no white balance, pinhole display rays of the layout.
