@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the command-line tests: files, data paths, and the bad-input check
 // (status 2, a message naming what is wrong, no output or temporary left behind).
+#include "fixtures.h"
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -20,22 +21,8 @@ inline std::string data(const std::string& rel) { return std::string(INIM_SOURCE
 
 // A small display: K x R EIs of n px (0.1 mm pixels), panel with a 3 px border.
 inline std::string smallDisplayJson(int K, int R, int n, double gap = 3.0, double pitch = 0.9, int panelW = 0,
-                             int panelH = 0) {
-  if (!panelW) panelW = K * n + 6;
-  if (!panelH) panelH = R * n + 6;
-  std::ostringstream s;
-  s << R"({"name": "small test display",
-  "panel": {"name": "test panel", "resolution_px": [)"
-    << panelW << ", " << panelH << R"(], "pixel_pitch_mm": 0.1,
-            "primaries": {"R": {"gaussian": {"mean_nm": 625, "fwhm_nm": 35}},
-                          "G": {"gaussian": {"mean_nm": 530, "fwhm_nm": 35}},
-                          "B": {"gaussian": {"mean_nm": 460, "fwhm_nm": 30}}},
-            "peak_luminance_cd_m2": 500},
-  "mla": {"name": "test mla", "pitch_mm": )"
-    << pitch << R"(, "focal_length_mm": 3.0, "substrate_thickness_mm": 1.0, "material": "PMMA"},
-  "generation_gap_mm": )"
-    << gap << R"(, "reconstruction_gap_mm": 3.5, "ei_px": )" << n << R"(, "ei_count": [)" << K << ", " << R << "]}";
-  return s.str();
+                                    int panelH = 0) {
+  return fixtures::smallDisplayJson({K, R, n, gap, pitch, panelW, panelH});
 }
 
 // Runs `args` with `runner` (runInim, or a test's own binary) and expects a bad-input failure.

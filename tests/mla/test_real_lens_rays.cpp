@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "fixtures.h"
 #include "core/parallel.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
@@ -24,15 +25,6 @@ RealLensRayOptions opts(RealLensRayModel m, int n = 8) {
   o.model = m;
   o.samplesPerAxis = n;
   return o;
-}
-
-// The paper display with fewer EIs (the same panel, MLA and EI size).
-Display smallPaperDisplay(int K, int R, EiLayoutKind layout) {
-  Display d = loadDisplay(defaultDisplayPath());
-  d.eiCols = K;
-  d.eiRows = R;
-  d.layout = layout;
-  return d;
 }
 
 }  // namespace
@@ -159,7 +151,7 @@ TEST(RealLensRays, OffsetTableMatchesDirectComputation) {
            {kViewer, RealLensRayModel::Centroid},
            {kPanel, RealLensRayModel::Centroid},
            {kViewer, RealLensRayModel::Chief}}) {
-    Display d = smallPaperDisplay(5, 3, EiLayoutKind::Parallel);
+    Display d = fixtures::paperDisplay({.cols = 5, .rows = 3, .layout = EiLayoutKind::Parallel});
     d.mla.orientation = o;
     EiLayout L = computeLayout(d);
     auto mla = RealMla::fromDisplay(d, L, L.gapMm);
@@ -186,7 +178,7 @@ TEST(RealLensRays, OffsetTableMatchesDirectComputation) {
 // Whole layouts: ray order, origins on z = 0, directions toward the viewer, close to the pinhole
 // rays through the same (physical) lens centres, identical for 1 and 2 threads.
 TEST(RealLensRays, LayoutRaysDeterministicAndNearPinhole) {
-  Display d = smallPaperDisplay(9, 5, EiLayoutKind::LensGrid);
+  Display d = fixtures::paperDisplay({.cols = 9, .rows = 5, .layout = EiLayoutKind::LensGrid});
   EiLayout L = computeLayout(d);
   auto mla = RealMla::fromDisplay(d, L, L.gapMm);
   for (auto model : {RealLensRayModel::Chief, RealLensRayModel::Centroid}) {
