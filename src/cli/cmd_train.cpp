@@ -10,7 +10,6 @@
 #include "cli/options.h"
 #include "core/progress.h"
 #include "fitting/fit_run.h"
-#include "radiance/grid_io.h"
 
 namespace inim::cli {
 
@@ -37,29 +36,8 @@ DatasetOptions datasetOptions(const DataArgs& a) {
   DatasetOptions o;
   o.downscale = a.downscale;
   o.holdoutEvery = a.holdoutEvery;
-  if (a.background == "white") o.background = glm::vec3(1.0f);
-  else if (a.background == "black") o.background = glm::vec3(0.0f);
-  else o.background = glm::vec3(parseVec3(a.background, "--background"));
-  if (!(glm::all(glm::greaterThanEqual(o.background, glm::vec3(0.0f))) &&
-        glm::all(glm::lessThanEqual(o.background, glm::vec3(1.0f)))))
-    throw InputError("", "--background", "\"" + a.background + "\"", "white, black or r,g,b in [0, 1]");
+  o.background = parseBackground(a.background);
   return o;
-}
-
-std::vector<int> parseIntList(const std::string& s, const std::string& key) {
-  std::vector<int> v;
-  size_t pos = 0;
-  while (pos <= s.size()) {
-    size_t comma = s.find(',', pos);
-    std::string item = s.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
-    char* end = nullptr;
-    long x = std::strtol(item.c_str(), &end, 10);
-    if (item.empty() || *end) throw InputError("", key, "\"" + s + "\"", "comma-separated whole numbers");
-    v.push_back(int(x));
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
-  }
-  return v;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point t) {
@@ -98,9 +76,9 @@ void runTrain(const TrainOpts& o) {
   cfg.shDegree = o.shDegree;
   cfg.timeBudgetSeconds = o.timeBudget;
   cfg.seed = o.run.seed;
-  cfg.resolutions = parseIntList(o.resolutions, "--resolutions");
+  cfg.resolutions = parseIntList(o.resolutions, "resolutions");
   cfg.stageStarts = o.stageStarts.empty() ? defaultStageStarts(o.iterations, int(cfg.resolutions.size()))
-                                          : parseIntList(o.stageStarts, "--stage-starts");
+                                          : parseIntList(o.stageStarts, "stage_starts");
   s.data = datasetOptions(o.data);
   if (!o.quiet) s.loaded = printDataset;
   if (!o.quiet && ProgressBar::stderrIsTerminal())
@@ -159,30 +137,18 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_flag("--all", o->all, "Evaluate every frame, not only the held-out ones");
   cmd->add_flag("--quiet", o->quiet, "Print only the means");
   addRunOptions(cmd, o->run, [o] {
-    const VoxelGrid grid = loadVoxelGrid(o->model);
-    const Dataset data = loadDataset(o->data.data, datasetOptions(o->data));
-    std::vector<int> frames = data.test;
-    if (o->all) {
-      frames.clear();
-      for (int i = 0; i < int(data.frames.size()); ++i) frames.push_back(i);
-    }
-    if (frames.empty())
-      throw InputError(data.file, "--holdout-every", std::to_string(o->data.holdoutEvery),
-                       "a split that holds out at least one frame (or --all)");
-    const auto t0 = std::chrono::steady_clock::now();
-    std::vector<Image> renders;
-    const std::vector<ViewScore> scores = evaluate(grid, data, frames, o->out.empty() ? nullptr : &renders);
-    const double seconds = secondsSince(t0);
-    if (!o->out.empty()) {
-      OutputSet outputs;
-      writeEvaluation(o->out, o->model, data, scores, renders, outputs);
-      outputs.commit();
-    }
+    EvalRunSettings s;
+    s.modelPath = o->model;
+    s.dataPath = o->data.data;
+    s.data = datasetOptions(o->data);
+    s.allFrames = o->all;
+    s.outDir = o->out;
+    const EvalRunResult r = runEval(s);
     if (!o->quiet)
-      for (const auto& s : scores)
-        std::printf("frame %4d  PSNR %6.2f dB  SSIM %.4f  %s\n", s.frame, s.psnr, s.ssim, s.image.c_str());
-    std::printf("mean over %zu views: PSNR %.2f dB, SSIM %.4f (%.1f s)\n", scores.size(), meanPsnr(scores),
-                meanSsim(scores), seconds);
+      for (const auto& v : r.scores)
+        std::printf("frame %4d  PSNR %6.2f dB  SSIM %.4f  %s\n", v.frame, v.psnr, v.ssim, v.image.c_str());
+    std::printf("mean over %zu views: PSNR %.2f dB, SSIM %.4f (%.1f s)\n", r.scores.size(), meanPsnr(r.scores),
+                meanSsim(r.scores), r.seconds);
   });
 }
 

@@ -64,7 +64,7 @@ RealLensRayOptions realLensRayOptions(const RealLensArgs& a);
 // no flag sets is returned as it is.
 std::string flagForSetting(const std::string& key);
 // The error as the command line reports it: a setting named by its flag. Errors about a file
-// keep the file's own key.
+// keep the file's own key, unless the file is the setting's value (an EIA that does not exist).
 InputError asCommandLineError(const InputError& e);
 
 }  // namespace inim::cli
