@@ -40,10 +40,6 @@ DatasetOptions datasetOptions(const DataArgs& a) {
   return o;
 }
 
-double secondsSince(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 void printDataset(const Dataset& data) {
   const int w = data.frames.empty() ? 0 : data.frames[0].image.width;
   const int h = data.frames.empty() ? 0 : data.frames[0].image.height;

@@ -63,10 +63,6 @@ void addCameraPoseOptions(CLI::App* cmd, CameraPoseOpts& o) {
   cmd->add_flag("--quiet", o.quiet, "Print nothing but warnings");
 }
 
-double secondsSince(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 struct ViewOpts {
   CameraPoseOpts cam;
   DisplayArgs display;

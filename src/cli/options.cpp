@@ -99,7 +99,7 @@ std::string flagForSetting(const std::string& key) {
       {"hfov_deg", "--fov"}, {"fov", "--fov"}, {"aperture_mm", "--aperture"}, {"aperture", "--aperture"},
       {"focus_distance_mm", "--focus"}, {"max_depth", "--max-depth"}, {"integrator", "--integrator"},
       {"resolutions", "--resolutions"}, {"stage_starts", "--stage-starts"}, {"holdout_every", "--holdout-every"},
-      {"elevation_deg", "--elevation-deg"}, {"target", "--target"},
+      {"elevation_deg", "--elevation-deg"}, {"target", "--target"}, {"space", "--space"}, {"de_map", "--de-map"},
   };
   auto it = kFlags.find(key);
   return it == kFlags.end() ? key : it->second;
