@@ -40,17 +40,6 @@ DatasetOptions datasetOptions(const DataArgs& a) {
   return o;
 }
 
-void printDataset(const Dataset& data) {
-  const int w = data.frames.empty() ? 0 : data.frames[0].image.width;
-  const int h = data.frames.empty() ? 0 : data.frames[0].image.height;
-  std::printf("dataset:     %s (%s): %zu frames (%zu train, %zu held out), %d x %d px\n", data.file.c_str(),
-              data.format.c_str(), data.frames.size(), data.train.size(), data.test.size(), w, h);
-  std::printf("scene box:   (%.4g, %.4g, %.4g) - (%.4g, %.4g, %.4g), near %.4g, far %.4g\n", data.sceneBox.lo.x,
-              data.sceneBox.lo.y, data.sceneBox.lo.z, data.sceneBox.hi.x, data.sceneBox.hi.y, data.sceneBox.hi.z,
-              data.nearPlane, data.farPlane);
-  std::fflush(stdout);
-}
-
 struct TrainOpts {
   DataArgs data;
   std::string out, log, resolutions = "64,128,160", stageStarts;
@@ -76,7 +65,11 @@ void runTrain(const TrainOpts& o) {
   cfg.stageStarts = o.stageStarts.empty() ? defaultStageStarts(o.iterations, int(cfg.resolutions.size()))
                                           : parseIntList(o.stageStarts, "stage_starts");
   s.data = datasetOptions(o.data);
-  if (!o.quiet) s.loaded = printDataset;
+  if (!o.quiet)
+    s.loaded = [](const Dataset& data) {
+      std::printf("%s", datasetText(data).c_str());
+      std::fflush(stdout);
+    };
   if (!o.quiet && ProgressBar::stderrIsTerminal())
     s.progress = [](const TrainProgress& p) {
       std::fprintf(stderr, "\rtrain  iteration %d/%d  loss %.5f  PSNR %.2f dB  grid %dx%dx%d  %.0f s   ", p.iteration,
@@ -86,14 +79,7 @@ void runTrain(const TrainOpts& o) {
   const TrainingRunResult r = runTraining(s);
   if (s.progress) std::fprintf(stderr, "\n");
   if (o.quiet) return;
-  const TrainStats& st = r.stats;
-  std::printf("trained:     %d iterations of %d rays in %.1f s (last batch: loss %.5f, PSNR %.2f dB)%s\n", st.iterations,
-              cfg.batchSize, st.seconds, st.loss, st.psnr, st.stoppedEarly ? ", stopped early" : "");
-  if (!r.heldOut.empty())
-    std::printf("held out:    %zu views, PSNR %.2f dB, SSIM %.4f (rendered in %.1f s)\n", r.heldOut.size(),
-                meanPsnr(r.heldOut), meanSsim(r.heldOut), r.evalSeconds);
-  std::printf("wrote:       %s (grid %dx%dx%d, SH degree %d), %s; total %.1f s\n", o.out.c_str(), r.gridResolution.x,
-              r.gridResolution.y, r.gridResolution.z, r.shDegree, r.logPath.c_str(), secondsSince(t0));
+  std::printf("%s", trainingText(s, r, secondsSince(t0)).c_str());
 }
 
 }  // namespace

@@ -199,9 +199,7 @@ void addReferenceCommand(CLI::App& app) {
       std::fprintf(stderr, "inim: warning: the display is out of the camera's view (%s); the reference is rendered anyway\n",
                    r.camera.pose.describe().c_str());
     if (o->cam.quiet) return;
-    std::printf("rendered:    %d spp, %.2f s render, %.2f s total; %llu rays, %llu hit the scene\n", s.reference.spp,
-                r.render.stats.seconds, secondsSince(t0), (unsigned long long)r.render.stats.tracedRays,
-                (unsigned long long)r.render.stats.emittingRays);
+    std::printf("%s", summaryText(r, s.reference, secondsSince(t0)).c_str());
     std::printf("%s", writtenText(r, o->cam.s.out).c_str());
   });
 }

@@ -100,6 +100,7 @@ std::string flagForSetting(const std::string& key) {
       {"focus_distance_mm", "--focus"}, {"max_depth", "--max-depth"}, {"integrator", "--integrator"},
       {"resolutions", "--resolutions"}, {"stage_starts", "--stage-starts"}, {"holdout_every", "--holdout-every"},
       {"elevation_deg", "--elevation-deg"}, {"target", "--target"}, {"space", "--space"}, {"de_map", "--de-map"},
+      {"eye", "--eye"}, {"look_at", "--look-at"}, {"up", "--up"},
   };
   auto it = kFlags.find(key);
   return it == kFlags.end() ? key : it->second;

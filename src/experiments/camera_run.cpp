@@ -112,6 +112,14 @@ void applyEstimatorPolicy(ViewSettings& view, const std::string& estimator, bool
   if (view.panelEstimator == PanelEstimator::Quadrature && !sppGiven) view.spp = 1;
 }
 
+std::string summaryText(const ReferenceRunResult& r, const ReferenceSettings& reference, double totalSeconds) {
+  char buf[400];
+  std::snprintf(buf, sizeof buf, "rendered:    %d spp, %.2f s render, %.2f s total; %llu rays, %llu hit the scene\n",
+                reference.spp, r.render.stats.seconds, totalSeconds, (unsigned long long)r.render.stats.tracedRays,
+                (unsigned long long)r.render.stats.emittingRays);
+  return buf;
+}
+
 std::string cameraText(const CameraSetup& cs) {
   return "camera:      " + cs.desc.name + "; " + cs.camera->describe() + "\nimage:       " +
          std::to_string(cs.camera->width()) + " x " + std::to_string(cs.camera->height()) + " px, pitch " +

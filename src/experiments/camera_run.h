@@ -104,6 +104,9 @@ struct ReferenceRunResult {
 ReferenceRunResult runReference(const ReferenceRunSettings& s,
                                 const std::function<void(const ReferenceRunResult&)>& loaded = {});
 
+// The render's line as `inim reference` prints it: samples, times and rays.
+std::string summaryText(const ReferenceRunResult& r, const ReferenceSettings& reference, double totalSeconds);
+
 // The camera's two lines (model; image size, pitch and pose) as both commands print them.
 std::string cameraText(const CameraSetup& cs);
 // The exposure and the files written, as both commands print them.

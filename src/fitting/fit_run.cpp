@@ -50,6 +50,33 @@ glm::vec3 parseBackground(const std::string& text) {
   return c;
 }
 
+std::string datasetText(const Dataset& data) {
+  const int w = data.frames.empty() ? 0 : data.frames[0].image.width;
+  const int h = data.frames.empty() ? 0 : data.frames[0].image.height;
+  char buf[2][4096];
+  std::snprintf(buf[0], sizeof buf[0], "dataset:     %s (%s): %zu frames (%zu train, %zu held out), %d x %d px\n",
+                data.file.c_str(), data.format.c_str(), data.frames.size(), data.train.size(), data.test.size(), w, h);
+  std::snprintf(buf[1], sizeof buf[1], "scene box:   (%.4g, %.4g, %.4g) - (%.4g, %.4g, %.4g), near %.4g, far %.4g\n",
+                data.sceneBox.lo.x, data.sceneBox.lo.y, data.sceneBox.lo.z, data.sceneBox.hi.x, data.sceneBox.hi.y,
+                data.sceneBox.hi.z, data.nearPlane, data.farPlane);
+  return std::string(buf[0]) + buf[1];
+}
+
+std::string trainingText(const TrainingRunSettings& s, const TrainingRunResult& r, double totalSeconds) {
+  const TrainStats& st = r.stats;
+  char buf[3][4096] = {};
+  std::snprintf(buf[0], sizeof buf[0], "trained:     %d iterations of %d rays in %.1f s (last batch: loss %.5f, PSNR "
+                "%.2f dB)%s\n", st.iterations, s.config.batchSize, st.seconds, st.loss, st.psnr,
+                st.stoppedEarly ? ", stopped early" : "");
+  if (!r.heldOut.empty())
+    std::snprintf(buf[1], sizeof buf[1], "held out:    %zu views, PSNR %.2f dB, SSIM %.4f (rendered in %.1f s)\n",
+                  r.heldOut.size(), meanPsnr(r.heldOut), meanSsim(r.heldOut), r.evalSeconds);
+  std::snprintf(buf[2], sizeof buf[2], "wrote:       %s (grid %dx%dx%d, SH degree %d), %s; total %.1f s\n",
+                s.modelPath.c_str(), r.gridResolution.x, r.gridResolution.y, r.gridResolution.z, r.shDegree,
+                r.logPath.c_str(), totalSeconds);
+  return std::string(buf[0]) + buf[1] + buf[2];
+}
+
 EvalRunResult runEval(const EvalRunSettings& s) {
   const VoxelGrid grid = loadVoxelGrid(s.modelPath);
   const Dataset data = loadDataset(s.dataPath, s.data);

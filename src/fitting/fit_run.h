@@ -63,6 +63,11 @@ struct EvalRunResult {
 // InputError naming `holdout_every` when there is no frame to score.
 EvalRunResult runEval(const EvalRunSettings& s);
 
+// What `inim train` prints: the dataset once loaded (file, frames, size, scene box), and after
+// the run the training, the held-out scores and the files written (with the total time).
+std::string datasetText(const Dataset& data);
+std::string trainingText(const TrainingRunSettings& s, const TrainingRunResult& r, double totalSeconds);
+
 double meanPsnr(const std::vector<ViewScore>& scores);
 double meanSsim(const std::vector<ViewScore>& scores);
 
