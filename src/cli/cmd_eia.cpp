@@ -9,7 +9,6 @@
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "core/format.h"
 #include "experiments/eia_run.h"
 
 namespace inim::cli {
@@ -43,24 +42,16 @@ EiaRunSettings eiaRunSettings(const EiaOpts& o, const RunFile& run) {
   e.placementOverride = placementOverride(o.place);
   SynthesisSettings& s = e.synthesis;
   s.vcpMm = optionOrRun(o.vcpOpt, o.vcpMm, run.vcpMm, kDefaultVcpMm);
-  if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", formatNumber(s.vcpMm), "a finite distance in mm");
   s.spp = optionOrRun(o.sppOpt, o.spp, run.spp, 1);
-  if (s.spp < 1) throw InputError("", "--spp", std::to_string(s.spp), "a whole number >= 1");
+  checkQuerySampling(s.vcpMm, s.spp);
   s.seed = optionOrRun(o.runOpts.seedOpt, o.runOpts.seed, run.seed, o.runOpts.seed);
-  const std::string exposure = optionOrRun(o.expOpt, o.exposure, run.exposure, std::string("auto"));
-  if (exposure == "auto") {
-    s.autoExposure = true;
-  } else {
-    char* end = nullptr;
-    s.exposure = std::strtod(exposure.c_str(), &end);
-    if (exposure.empty() || *end || !(s.exposure > 0.0) || !std::isfinite(s.exposure))
-      throw InputError(o.expOpt->count() ? "" : run.file, o.expOpt->count() ? "--exposure" : "exposure",
-                       "\"" + exposure + "\"", "a number > 0 or auto");
+  try {
+    applyExposure(optionOrRun(o.expOpt, o.exposure, run.exposure, std::string("auto")), s);
+  } catch (const InputError& e) {
+    throw o.expOpt->count() ? e : e.withFile(run.file);  // a run file's value is named as the file spells it
   }
   s.gamut = parseGamut(optionOrRun(o.gamutOpt, o.gamut, run.gamut, std::string("clip")));
-  const std::string wb = optionOrRun(o.wbOpt, o.whiteBalance, run.whiteBalance, std::string("none"));
-  if (wb != "none" && wb != "d65") throw InputError("", "--white-balance", "\"" + wb + "\"", "none or d65");
-  s.whiteBalanceD65 = wb == "d65";
+  s.whiteBalanceD65 = parseWhiteBalanceD65(optionOrRun(o.wbOpt, o.whiteBalance, run.whiteBalance, std::string("none")));
   s.aovs = o.aovs;
   s.progress = !o.quiet;
   e.displayPath = optionOrRun(o.display.displayOpt, o.display.display, run.display, std::string());
@@ -70,10 +61,6 @@ EiaRunSettings eiaRunSettings(const EiaOpts& o, const RunFile& run) {
   e.triadWavelengths = optionOrRun(o.triOpt, o.triads, run.triadWavelengths, std::string("panel"));
   e.out = o.out, e.png = o.png, e.preview = o.preview, e.sdf = o.sdf;
   return e;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
 }  // namespace

@@ -10,9 +10,8 @@
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "core/format.h"
+#include "experiments/eia_run.h"
 #include "experiments/ray_export.h"
-#include "synthesis/eia_synthesis.h"
 
 namespace inim::cli {
 
@@ -61,9 +60,8 @@ RayExportSettings exportSettings(const RaysOpts& o) {
   s.placement = run.placement;
   s.placementOverride = placementOverride(o.place);
   s.vcpMm = optionOrRun(o.vcpOpt, o.vcpMm, run.vcpMm, kDefaultVcpMm);
-  if (!std::isfinite(s.vcpMm)) throw InputError("", "--vcp-mm", formatNumber(s.vcpMm), "a finite distance in mm");
   s.spp = optionOrRun(o.sppOpt, o.spp, run.spp, 1);
-  if (s.spp < 1) throw InputError("", "--spp", std::to_string(s.spp), "a whole number >= 1");
+  checkQuerySampling(s.vcpMm, s.spp);
   return s;
 }
 

@@ -10,19 +10,6 @@
 
 namespace inim::cli {
 
-namespace {
-
-// "x,y,z" -> vector; InputError naming the option otherwise.
-Vec3 parseVec3Option(const std::string& text, const std::string& option) {
-  Vec3 v;
-  char extra = 0;
-  if (std::sscanf(text.c_str(), "%f,%f,%f%c", &v.x, &v.y, &v.z, &extra) != 3 || !isFinite(v))
-    throw InputError("", option, "\"" + text + "\"", "three finite numbers x,y,z");
-  return v;
-}
-
-}  // namespace
-
 void addRenderCommand(CLI::App& app) {
   struct Opts {
     RenderRunSettings s;
@@ -52,8 +39,8 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--max-depth", o->maxDepth, "Maximum scattering depth (overrides the scene)");
   addRunOptions(cmd, o->run, [o] {
     RenderRunSettings& s = o->s;
-    s.camera.pose = {parseVec3Option(o->eye, "--eye"), parseVec3Option(o->lookAt, "--look-at"),
-                     parseVec3Option(o->up, "--up")};
+    s.camera.pose = {parseCameraVector(o->eye, "eye"), parseCameraVector(o->lookAt, "look_at"),
+                     parseCameraVector(o->up, "up")};
     if (o->integrator == "direct") s.integrator = IntegratorSettings::Type::Direct;
     if (o->integrator == "path") s.integrator = IntegratorSettings::Type::Path;
     if (o->maxDepth >= 0) s.maxDepth = o->maxDepth;

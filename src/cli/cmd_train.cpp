@@ -10,7 +10,6 @@
 #include "cli/options.h"
 #include "core/progress.h"
 #include "fitting/fit_run.h"
-#include "radiance/grid_io.h"
 
 namespace inim::cli {
 
@@ -37,44 +36,8 @@ DatasetOptions datasetOptions(const DataArgs& a) {
   DatasetOptions o;
   o.downscale = a.downscale;
   o.holdoutEvery = a.holdoutEvery;
-  if (a.background == "white") o.background = glm::vec3(1.0f);
-  else if (a.background == "black") o.background = glm::vec3(0.0f);
-  else o.background = glm::vec3(parseVec3(a.background, "--background"));
-  if (!(glm::all(glm::greaterThanEqual(o.background, glm::vec3(0.0f))) &&
-        glm::all(glm::lessThanEqual(o.background, glm::vec3(1.0f)))))
-    throw InputError("", "--background", "\"" + a.background + "\"", "white, black or r,g,b in [0, 1]");
+  o.background = parseBackground(a.background);
   return o;
-}
-
-std::vector<int> parseIntList(const std::string& s, const std::string& key) {
-  std::vector<int> v;
-  size_t pos = 0;
-  while (pos <= s.size()) {
-    size_t comma = s.find(',', pos);
-    std::string item = s.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
-    char* end = nullptr;
-    long x = std::strtol(item.c_str(), &end, 10);
-    if (item.empty() || *end) throw InputError("", key, "\"" + s + "\"", "comma-separated whole numbers");
-    v.push_back(int(x));
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
-  }
-  return v;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-void printDataset(const Dataset& data) {
-  const int w = data.frames.empty() ? 0 : data.frames[0].image.width;
-  const int h = data.frames.empty() ? 0 : data.frames[0].image.height;
-  std::printf("dataset:     %s (%s): %zu frames (%zu train, %zu held out), %d x %d px\n", data.file.c_str(),
-              data.format.c_str(), data.frames.size(), data.train.size(), data.test.size(), w, h);
-  std::printf("scene box:   (%.4g, %.4g, %.4g) - (%.4g, %.4g, %.4g), near %.4g, far %.4g\n", data.sceneBox.lo.x,
-              data.sceneBox.lo.y, data.sceneBox.lo.z, data.sceneBox.hi.x, data.sceneBox.hi.y, data.sceneBox.hi.z,
-              data.nearPlane, data.farPlane);
-  std::fflush(stdout);
 }
 
 struct TrainOpts {
@@ -98,11 +61,15 @@ void runTrain(const TrainOpts& o) {
   cfg.shDegree = o.shDegree;
   cfg.timeBudgetSeconds = o.timeBudget;
   cfg.seed = o.run.seed;
-  cfg.resolutions = parseIntList(o.resolutions, "--resolutions");
+  cfg.resolutions = parseIntList(o.resolutions, "resolutions");
   cfg.stageStarts = o.stageStarts.empty() ? defaultStageStarts(o.iterations, int(cfg.resolutions.size()))
-                                          : parseIntList(o.stageStarts, "--stage-starts");
+                                          : parseIntList(o.stageStarts, "stage_starts");
   s.data = datasetOptions(o.data);
-  if (!o.quiet) s.loaded = printDataset;
+  if (!o.quiet)
+    s.loaded = [](const Dataset& data) {
+      std::printf("%s", datasetText(data).c_str());
+      std::fflush(stdout);
+    };
   if (!o.quiet && ProgressBar::stderrIsTerminal())
     s.progress = [](const TrainProgress& p) {
       std::fprintf(stderr, "\rtrain  iteration %d/%d  loss %.5f  PSNR %.2f dB  grid %dx%dx%d  %.0f s   ", p.iteration,
@@ -112,14 +79,7 @@ void runTrain(const TrainOpts& o) {
   const TrainingRunResult r = runTraining(s);
   if (s.progress) std::fprintf(stderr, "\n");
   if (o.quiet) return;
-  const TrainStats& st = r.stats;
-  std::printf("trained:     %d iterations of %d rays in %.1f s (last batch: loss %.5f, PSNR %.2f dB)%s\n", st.iterations,
-              cfg.batchSize, st.seconds, st.loss, st.psnr, st.stoppedEarly ? ", stopped early" : "");
-  if (!r.heldOut.empty())
-    std::printf("held out:    %zu views, PSNR %.2f dB, SSIM %.4f (rendered in %.1f s)\n", r.heldOut.size(),
-                meanPsnr(r.heldOut), meanSsim(r.heldOut), r.evalSeconds);
-  std::printf("wrote:       %s (grid %dx%dx%d, SH degree %d), %s; total %.1f s\n", o.out.c_str(), r.gridResolution.x,
-              r.gridResolution.y, r.gridResolution.z, r.shDegree, r.logPath.c_str(), secondsSince(t0));
+  std::printf("%s", trainingText(s, r, secondsSince(t0)).c_str());
 }
 
 }  // namespace
@@ -159,30 +119,18 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_flag("--all", o->all, "Evaluate every frame, not only the held-out ones");
   cmd->add_flag("--quiet", o->quiet, "Print only the means");
   addRunOptions(cmd, o->run, [o] {
-    const VoxelGrid grid = loadVoxelGrid(o->model);
-    const Dataset data = loadDataset(o->data.data, datasetOptions(o->data));
-    std::vector<int> frames = data.test;
-    if (o->all) {
-      frames.clear();
-      for (int i = 0; i < int(data.frames.size()); ++i) frames.push_back(i);
-    }
-    if (frames.empty())
-      throw InputError(data.file, "--holdout-every", std::to_string(o->data.holdoutEvery),
-                       "a split that holds out at least one frame (or --all)");
-    const auto t0 = std::chrono::steady_clock::now();
-    std::vector<Image> renders;
-    const std::vector<ViewScore> scores = evaluate(grid, data, frames, o->out.empty() ? nullptr : &renders);
-    const double seconds = secondsSince(t0);
-    if (!o->out.empty()) {
-      OutputSet outputs;
-      writeEvaluation(o->out, o->model, data, scores, renders, outputs);
-      outputs.commit();
-    }
+    EvalRunSettings s;
+    s.modelPath = o->model;
+    s.dataPath = o->data.data;
+    s.data = datasetOptions(o->data);
+    s.allFrames = o->all;
+    s.outDir = o->out;
+    const EvalRunResult r = runEval(s);
     if (!o->quiet)
-      for (const auto& s : scores)
-        std::printf("frame %4d  PSNR %6.2f dB  SSIM %.4f  %s\n", s.frame, s.psnr, s.ssim, s.image.c_str());
-    std::printf("mean over %zu views: PSNR %.2f dB, SSIM %.4f (%.1f s)\n", scores.size(), meanPsnr(scores),
-                meanSsim(scores), seconds);
+      for (const auto& v : r.scores)
+        std::printf("frame %4d  PSNR %6.2f dB  SSIM %.4f  %s\n", v.frame, v.psnr, v.ssim, v.image.c_str());
+    std::printf("mean over %zu views: PSNR %.2f dB, SSIM %.4f (%.1f s)\n", r.scores.size(), meanPsnr(r.scores),
+                meanSsim(r.scores), r.seconds);
   });
 }
 

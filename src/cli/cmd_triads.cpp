@@ -12,14 +12,6 @@
 
 namespace inim::cli {
 
-namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-}  // namespace
-
 void addTriadsCommand(CLI::App& app) {
   auto* triads = app.add_subcommand("triads", "RGB-wavelength triads: Zemax SDF export and EIA formation");
   triads->require_subcommand(1);

@@ -4,13 +4,11 @@
 // EIA was made with (src/view/reference_renderer.h). Both run in src/experiments/camera_run.h.
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "core/format.h"
 #include "experiments/camera_run.h"
 
 namespace inim::cli {
@@ -65,21 +63,6 @@ void addCameraPoseOptions(CLI::App* cmd, CameraPoseOpts& o) {
   cmd->add_flag("--quiet", o.quiet, "Print nothing but warnings");
 }
 
-void printCamera(const CameraSetup& cs) {
-  std::printf("camera:      %s; %s\n", cs.desc.name.c_str(), cs.camera->describe().c_str());
-  std::printf("image:       %d x %d px, pitch %s um; pose %s\n", cs.camera->width(), cs.camera->height(),
-              formatNumber(cs.camera->sensor().pitchMm * 1e3).c_str(), cs.pose.describe().c_str());
-}
-
-void printWritten(double k, const CameraSetup& cs, const std::string& out) {
-  std::printf("exposure:    %s%s\n", formatNumber(k).c_str(), cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "");
-  std::printf("wrote:       %s, %s\n", out.c_str(), cs.png.c_str());
-}
-
-double secondsSince(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 struct ViewOpts {
   CameraPoseOpts cam;
   DisplayArgs display;
@@ -100,22 +83,12 @@ ViewSettings viewSettings(const ViewOpts& o) {
   vs.spectral = o.spectral == "visible" ? SpectralSampling::Visible : SpectralSampling::Primaries;
   vs.apertureGrid = o.apertureGrid;
   vs.wavelengthNodes = o.wavelengthNodes;
-  if (o.estimator == "auto")  // quadrature integrates the primaries' spectra: it needs --spectral primaries
-    vs.panelEstimator = vs.spectral == SpectralSampling::Primaries ? PanelEstimator::Quadrature : PanelEstimator::Footprint;
-  else
-    parsePanelEstimator(o.estimator, vs.panelEstimator);
-  // Quadrature has no noise: one stratum per pixel unless asked (RMSE ~1.3% of the mean
-  // against 16 at the sensor's resolution; inim bench).
-  if (vs.panelEstimator == PanelEstimator::Quadrature && o.cam.sppOpt->count() == 0) vs.spp = 1;
+  applyEstimatorPolicy(vs, o.estimator, o.cam.sppOpt->count() > 0);
   return vs;
 }
 
 void runViewCommand(const ViewOpts& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::string ext = lowerExtension(o.eia);
-  if (ext != ".exr" && ext != ".png")
-    throw InputError("", "--eia", "\"" + o.eia + "\"", "an EIA image: linear EXR (or encoded PNG)");
-  if (!std::filesystem::exists(o.eia)) throw InputError(o.eia, "--eia", "\"" + o.eia + "\"", "an existing EIA image");
   ViewRunSettings s;
   s.camera = o.cam.settings();
   s.displayPath = o.display.display;
@@ -129,10 +102,7 @@ void runViewCommand(const ViewOpts& o) {
   s.view = viewSettings(o);
   const ViewRunResult r = runView(s, [&](const ViewRunResult& v) {
     if (o.cam.quiet) return;
-    std::printf("display:     %s (g = %s mm, %s MLA%s)\n", v.display.name.c_str(), formatNumber(v.gapMm).c_str(),
-                o.mla == "ideal" ? "ideal thin-lens" : "real refracting", v.coverGlass ? ", cover glass" : "");
-    std::printf("eia:         %s (%d x %d px)\n", o.eia.c_str(), v.eiaWidth, v.eiaHeight);
-    printCamera(v.camera);
+    std::printf("%s", loadedText(s, v).c_str());
     std::fflush(stdout);
   });
   if (!r.render.stats.displayInView())
@@ -142,7 +112,7 @@ void runViewCommand(const ViewOpts& o) {
                  r.camera.pose.describe().c_str());
   if (o.cam.quiet) return;
   std::printf("%s", summaryText(r, s.view, secondsSince(t0)).c_str());
-  printWritten(r.exposureFactor, r.camera, o.cam.s.out);
+  std::printf("%s", writtenText(r, o.cam.s.out).c_str());
 }
 
 }  // namespace
@@ -222,17 +192,15 @@ void addReferenceCommand(CLI::App& app) {
     const ReferenceRunResult r = runReference(s, [&](const ReferenceRunResult& v) {
       if (o->cam.quiet) return;
       std::printf("scene:       %s; placement %s\n", v.fieldPath.c_str(), v.placement.describe().c_str());
-      printCamera(v.camera);
+      std::printf("%s", cameraText(v.camera).c_str());
       std::fflush(stdout);
     });
     if (!r.displayInView)
       std::fprintf(stderr, "inim: warning: the display is out of the camera's view (%s); the reference is rendered anyway\n",
                    r.camera.pose.describe().c_str());
     if (o->cam.quiet) return;
-    std::printf("rendered:    %d spp, %.2f s render, %.2f s total; %llu rays, %llu hit the scene\n", s.reference.spp,
-                r.render.stats.seconds, secondsSince(t0), (unsigned long long)r.render.stats.tracedRays,
-                (unsigned long long)r.render.stats.emittingRays);
-    printWritten(r.exposureFactor, r.camera, o->cam.s.out);
+    std::printf("%s", summaryText(r, s.reference, secondsSince(t0)).c_str());
+    std::printf("%s", writtenText(r, o->cam.s.out).c_str());
   });
 }
 

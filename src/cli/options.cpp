@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "core/format.h"
 #include "core/parallel.h"
@@ -24,10 +25,12 @@ void addDisplayOptions(CLI::App* cmd, DisplayArgs& a) {
 }
 
 LayoutOverride layoutOverride(const DisplayArgs& a, const RunFile* run) {
+  // Errors about the display file name an override by where it came from: its flag, or the run file.
   LayoutOverride lo;
-  if (a.layoutOpt->count()) lo.layout = a.layout;
+  if (a.layoutOpt->count()) lo.layout = a.layout, lo.layoutKey = flagForSetting("layout");
   else if (run && run->layout) lo.layout = *run->layout, lo.layoutKey = "layout (" + run->file + ")";
-  if (a.distanceOpt->count()) lo.viewingDistanceMm = a.viewingDistanceMm;
+  if (a.distanceOpt->count())
+    lo.viewingDistanceMm = a.viewingDistanceMm, lo.distanceKey = flagForSetting("viewing_distance_mm");
   else if (run && run->viewingDistanceMm)
     lo.viewingDistanceMm = *run->viewingDistanceMm, lo.distanceKey = "viewing_distance_mm (" + run->file + ")";
   return lo;
@@ -95,15 +98,21 @@ std::string flagForSetting(const std::string& key) {
       {"reference_spp", "--reference-spp"}, {"eia_spp", "--eia-spp"}, {"angle_deg", "--angle"},
       {"hfov_deg", "--fov"}, {"fov", "--fov"}, {"aperture_mm", "--aperture"}, {"aperture", "--aperture"},
       {"focus_distance_mm", "--focus"}, {"max_depth", "--max-depth"}, {"integrator", "--integrator"},
+      {"resolutions", "--resolutions"}, {"stage_starts", "--stage-starts"}, {"holdout_every", "--holdout-every"},
+      {"elevation_deg", "--elevation-deg"}, {"target", "--target"}, {"space", "--space"}, {"de_map", "--de-map"},
+      {"eye", "--eye"}, {"look_at", "--look-at"}, {"up", "--up"},
   };
   auto it = kFlags.find(key);
   return it == kFlags.end() ? key : it->second;
 }
 
 InputError asCommandLineError(const InputError& e) {
-  if (!e.file().empty()) return e;
+  // An error about a file keeps the file's own key, unless the file is the setting's value or
+  // the key is a setting that no file holds (how a dataset is split).
+  static const std::set<std::string> kSettingsAboutAFile = {"holdout_every"};
+  if (!e.file().empty() && e.value() != "\"" + e.file() + "\"" && !kSettingsAboutAFile.count(e.key())) return e;
   const std::string flag = flagForSetting(e.key());
-  return flag == e.key() ? e : InputError("", flag, e.value(), e.expected());
+  return flag == e.key() ? e : InputError(e.file(), flag, e.value(), e.expected());
 }
 
 }  // namespace inim::cli

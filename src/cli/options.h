@@ -4,6 +4,7 @@
 // given on the command line, else the run file's value, else the default"; and the table that
 // names a library setting by its flag when an error is printed.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -60,11 +61,16 @@ void addRealLensOptions(CLI::App* cmd, RealLensArgs& a, const std::string& help)
 // The options checked (InputError naming the option when one is given without --real-lens).
 RealLensRayOptions realLensRayOptions(const RealLensArgs& a);
 
+// Wall-clock seconds since `start`, for the times the commands print.
+inline double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 // The flag that sets a library setting ("spp" -> "--spp", "vcp_mm" -> "--vcp-mm"); a key that
 // no flag sets is returned as it is.
 std::string flagForSetting(const std::string& key);
 // The error as the command line reports it: a setting named by its flag. Errors about a file
-// keep the file's own key.
+// keep the file's own key, unless the file is the setting's value (an EIA that does not exist).
 InputError asCommandLineError(const InputError& e);
 
 }  // namespace inim::cli

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cmath>
+#include <filesystem>
 #include <future>
 
 #include "core/error.h"
@@ -56,11 +57,17 @@ double writeExposed(const Image& cameraRgb, const CameraSetup& cs, const std::st
   return k;
 }
 
-// The EIA, as drive values (a PNG is decoded through the panel's EOTF by the emitter).
-Image readEia(const std::string& path) {
+// InputError unless `path` names an existing EXR or PNG.
+void checkEiaPath(const std::string& path) {
   const std::string ext = lowerExtension(path);
   if (ext != ".exr" && ext != ".png")
     throw InputError("", "eia", "\"" + path + "\"", "an EIA image: linear EXR (or encoded PNG)");
+  if (!std::filesystem::exists(path)) throw InputError(path, "eia", "\"" + path + "\"", "an existing EIA image");
+}
+
+// The EIA, as drive values (a PNG is decoded through the panel's EOTF by the emitter).
+Image readEia(const std::string& path) {
+  checkEiaPath(path);
   try {
     return readImage(path, true);
   } catch (const InputError& e) {
@@ -72,6 +79,7 @@ Image readEia(const std::string& path) {
 
 ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded) {
   const auto t0 = std::chrono::steady_clock::now();
+  checkEiaPath(s.eiaPath);
   ViewRunResult r;
   r.camera = setupCamera(s.camera, s.view.spp);
   if (!(s.view.backgroundY >= 0.0) || !std::isfinite(s.view.backgroundY))
@@ -93,6 +101,52 @@ ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const V
   r.render = renderView(*r.camera.camera, r.camera.desc.sensor, *dm.mla, *dm.panel, dm.area, s.view);
   r.exposureFactor = writeExposed(r.render.image, r.camera, s.camera.out);
   return r;
+}
+
+void applyEstimatorPolicy(ViewSettings& view, const std::string& estimator, bool sppGiven) {
+  if (estimator == "auto")
+    view.panelEstimator =
+        view.spectral == SpectralSampling::Primaries ? PanelEstimator::Quadrature : PanelEstimator::Footprint;
+  else
+    parsePanelEstimator(estimator, view.panelEstimator);
+  if (view.panelEstimator == PanelEstimator::Quadrature && !sppGiven) view.spp = 1;
+}
+
+std::string summaryText(const ReferenceRunResult& r, const ReferenceSettings& reference, double totalSeconds) {
+  char buf[400];
+  std::snprintf(buf, sizeof buf, "rendered:    %d spp, %.2f s render, %.2f s total; %llu rays, %llu hit the scene\n",
+                reference.spp, r.render.stats.seconds, totalSeconds, (unsigned long long)r.render.stats.tracedRays,
+                (unsigned long long)r.render.stats.emittingRays);
+  return buf;
+}
+
+std::string cameraText(const CameraSetup& cs) {
+  return "camera:      " + cs.desc.name + "; " + cs.camera->describe() + "\nimage:       " +
+         std::to_string(cs.camera->width()) + " x " + std::to_string(cs.camera->height()) + " px, pitch " +
+         formatNumber(cs.camera->sensor().pitchMm * 1e3) + " um; pose " + cs.pose.describe() + "\n";
+}
+
+namespace {
+
+std::string writtenText(double k, const CameraSetup& cs, const std::string& out) {
+  return "exposure:    " + formatNumber(k) + (cs.exposure.automatic ? " (auto: 99th percentile -> 0.9)" : "") +
+         "\nwrote:       " + out + ", " + cs.png + "\n";
+}
+
+}  // namespace
+
+std::string writtenText(const ReferenceRunResult& r, const std::string& out) {
+  return writtenText(r.exposureFactor, r.camera, out);
+}
+std::string writtenText(const ViewRunResult& r, const std::string& out) {
+  return writtenText(r.exposureFactor, r.camera, out);
+}
+
+std::string loadedText(const ViewRunSettings& s, const ViewRunResult& r) {
+  return "display:     " + r.display.name + " (g = " + formatNumber(r.gapMm) + " mm, " +
+         (s.mla == MlaKind::Ideal ? "ideal thin-lens" : "real refracting") + " MLA" +
+         (r.coverGlass ? ", cover glass" : "") + ")\neia:         " + s.eiaPath + " (" + std::to_string(r.eiaWidth) +
+         " x " + std::to_string(r.eiaHeight) + " px)\n" + cameraText(r.camera);
 }
 
 std::string summaryText(const ViewRunResult& run, const ViewSettings& vs, double totalSeconds) {

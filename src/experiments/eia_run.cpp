@@ -1,6 +1,8 @@
 #include "experiments/eia_run.h"
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <future>
@@ -87,6 +89,27 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 }
 
 }  // namespace
+
+void checkQuerySampling(double vcpMm, int spp) {
+  if (!std::isfinite(vcpMm)) throw InputError("", "vcp_mm", formatNumber(vcpMm), "a finite distance in mm");
+  if (spp < 1) throw InputError("", "spp", std::to_string(spp), "a whole number >= 1");
+}
+
+void applyExposure(const std::string& text, SynthesisSettings& s) {
+  if (text == "auto") {
+    s.autoExposure = true;
+    return;
+  }
+  char* end = nullptr;
+  s.exposure = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end || !(s.exposure > 0.0) || !std::isfinite(s.exposure))
+    throw InputError("", "exposure", "\"" + text + "\"", "a number > 0 or auto");
+}
+
+bool parseWhiteBalanceD65(const std::string& text) {
+  if (text != "none" && text != "d65") throw InputError("", "white_balance", "\"" + text + "\"", "none or d65");
+  return text == "d65";
+}
 
 EiaRunResult runEia(const EiaRunSettings& s, const std::function<void(const EiaRunResult&)>& loaded) {
   const auto t0 = std::chrono::steady_clock::now();

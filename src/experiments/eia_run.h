@@ -51,6 +51,14 @@ struct EiaRunResult {
   uint64_t triads = 0;  // triad rays written to the SDF
 };
 
+// The query rays' sampling as `inim eia` and `inim rays --for-field` check it before any work:
+// a finite VCP distance (InputError naming vcp_mm), then spp >= 1 (naming spp).
+void checkQuerySampling(double vcpMm, int spp);
+// An exposure setting on `s`: auto, or a factor > 0. InputError naming `exposure` otherwise.
+void applyExposure(const std::string& text, SynthesisSettings& s);
+// A white balance setting: none or d65 (true). InputError naming `white_balance` otherwise.
+bool parseWhiteBalanceD65(const std::string& text);
+
 // `loaded` (optional) is called when everything is loaded, before the synthesis.
 EiaRunResult runEia(const EiaRunSettings& s, const std::function<void(const EiaRunResult&)>& loaded = {});
 

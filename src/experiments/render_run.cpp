@@ -1,5 +1,6 @@
 #include "experiments/render_run.h"
 
+#include <cstdio>
 #include <filesystem>
 
 #include "core/error.h"
@@ -8,6 +9,14 @@
 #include "scene/analytic_scene.h"
 
 namespace inim {
+
+Vec3 parseCameraVector(const std::string& text, const std::string& key) {
+  Vec3 v;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%f,%f,%f%c", &v.x, &v.y, &v.z, &extra) != 3 || !isFinite(v))
+    throw InputError("", key, "\"" + text + "\"", "three finite numbers x,y,z");
+  return v;
+}
 
 RenderRunResult runRender(const RenderRunSettings& s) {
   if (s.render.spp <= 0) throw InputError("", "spp", std::to_string(s.render.spp), "a positive sample count");

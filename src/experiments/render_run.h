@@ -28,4 +28,8 @@ struct RenderRunResult {
 
 RenderRunResult runRender(const RenderRunSettings& s);
 
+// "x,y,z" -> a camera position or direction; InputError naming `key` (eye, look_at, up)
+// unless it is three finite numbers.
+Vec3 parseCameraVector(const std::string& text, const std::string& key);
+
 }  // namespace inim

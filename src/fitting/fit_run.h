@@ -40,6 +40,34 @@ struct TrainingRunResult {
 // at the end. InputError naming `out` unless the model path ends in .inimrf.
 TrainingRunResult runTraining(const TrainingRunSettings& s);
 
+// Whole numbers separated by commas ("64,128,160"); InputError naming `key` otherwise.
+std::vector<int> parseIntList(const std::string& text, const std::string& key);
+// What transparent pixels composite onto: white, black or r,g,b in [0, 1]; InputError naming
+// `background` otherwise.
+glm::vec3 parseBackground(const std::string& text);
+
+struct EvalRunSettings {
+  std::string modelPath;  // .inimrf
+  std::string dataPath;
+  DatasetOptions data;
+  bool allFrames = false;  // every frame, not only the held-out ones
+  std::string outDir;      // "": no files (see writeEvaluation)
+};
+
+struct EvalRunResult {
+  std::vector<ViewScore> scores;
+  double seconds = 0;  // the evaluation alone, without loading or writing
+};
+
+// Scores the model against the dataset's frames and writes the evaluation when asked.
+// InputError naming `holdout_every` when there is no frame to score.
+EvalRunResult runEval(const EvalRunSettings& s);
+
+// What `inim train` prints: the dataset once loaded (file, frames, size, scene box), and after
+// the run the training, the held-out scores and the files written (with the total time).
+std::string datasetText(const Dataset& data);
+std::string trainingText(const TrainingRunSettings& s, const TrainingRunResult& r, double totalSeconds);
+
 double meanPsnr(const std::vector<ViewScore>& scores);
 double meanSsim(const std::vector<ViewScore>& scores);
 
