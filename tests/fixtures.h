@@ -205,4 +205,32 @@ inline std::string smallDisplayJson(const SmallDisplayFile& f = {}) {
   return s.str();
 }
 
+// ---------------------------------------------------------------------------------------
+// The paper display reduced to K x R EIs of n x n pixels of `pixelMm`, lens pitch P, focal
+// length f, gap g, the panel `border` px larger than the EIA on each side (MLA and view tests).
+
+struct LensletTestDisplay {
+  int cols, rows, eiPx;
+  double pixelMm, lensPitchMm, focalLengthMm, gapMm;
+  int border = 4;
+};
+
+inline Display lensletTestDisplay(const LensletTestDisplay& v) {
+  Display d = loadDisplay(defaultDisplayPath());
+  d.file = "small-test-display";
+  d.panel.pixelPitchMm = v.pixelMm;
+  d.panel.widthPx = v.cols * v.eiPx + 2 * v.border;
+  d.panel.heightPx = v.rows * v.eiPx + 2 * v.border;
+  d.mla.pitchMm = v.lensPitchMm;
+  d.mla.apertureMm = v.lensPitchMm;
+  d.mla.focalLengthMm = v.focalLengthMm;
+  d.mla.radiusMm.reset();
+  d.generationGapMm = d.reconstructionGapMm = v.gapMm;
+  d.eiWidthPx = d.eiHeightPx = v.eiPx;
+  d.eiCols = v.cols;
+  d.eiRows = v.rows;
+  d.layout = EiLayoutKind::Parallel;
+  return d;
+}
+
 }  // namespace fixtures

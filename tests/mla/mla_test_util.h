@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 
+#include "fixtures.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
 #include "mla/real_mla.h"
@@ -50,21 +51,7 @@ inline std::unique_ptr<RealMla> makeMla(const Spec& s) {
 // of n x n pixels of `pixelMm`, lens pitch P, focal length f, gap g, the panel `border` px
 // larger than the EIA on each side.
 inline Display smallDisplay(int K, int R, int n, double pixelMm, double P, double f, double g, int border = 4) {
-  Display d = loadDisplay(defaultDisplayPath());
-  d.file = "small-test-display";
-  d.panel.pixelPitchMm = pixelMm;
-  d.panel.widthPx = K * n + 2 * border;
-  d.panel.heightPx = R * n + 2 * border;
-  d.mla.pitchMm = P;
-  d.mla.apertureMm = P;
-  d.mla.focalLengthMm = f;
-  d.mla.radiusMm.reset();
-  d.generationGapMm = d.reconstructionGapMm = g;
-  d.eiWidthPx = d.eiHeightPx = n;
-  d.eiCols = K;
-  d.eiRows = R;
-  d.layout = EiLayoutKind::Parallel;
-  return d;
+  return fixtures::lensletTestDisplay({K, R, n, pixelMm, P, f, g, border});
 }
 
 inline Spec spec(Mla::Orientation o) {

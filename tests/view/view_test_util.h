@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "fixtures.h"
 #include "camera/camera_config.h"
 #include "camera/camera_model.h"
 #include "core/image.h"
@@ -38,23 +39,11 @@ struct ScratchCleanup {
 // reconstruction gap g, panel `border` px larger than the EIA on each side, no cover glass,
 // RGB stripe with fill factor 0.8.
 inline Display smallDisplay(int K, int R, int n, double pixelMm, double P, double f, double g, int border = 4) {
-  Display d = loadDisplay(defaultDisplayPath());
-  d.file = "small-test-display";
+  // The MLA tests' display without cover glass, with RGB stripes of 80% fill.
+  Display d = fixtures::lensletTestDisplay({K, R, n, pixelMm, P, f, g, border});
   d.panel.file = "small-test-panel";
-  d.panel.pixelPitchMm = pixelMm;
-  d.panel.widthPx = K * n + 2 * border;
-  d.panel.heightPx = R * n + 2 * border;
   d.panel.coverGlass.reset();
   d.panel.subpixels = rgbStripeLayout(0.8);
-  d.mla.pitchMm = P;
-  d.mla.apertureMm = P;
-  d.mla.focalLengthMm = f;
-  d.mla.radiusMm.reset();
-  d.generationGapMm = d.reconstructionGapMm = g;
-  d.eiWidthPx = d.eiHeightPx = n;
-  d.eiCols = K;
-  d.eiRows = R;
-  d.layout = EiLayoutKind::Parallel;
   return d;
 }
 
