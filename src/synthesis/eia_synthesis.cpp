@@ -219,9 +219,7 @@ double chooseExposure(const SynthesisSettings& s, const std::vector<float>& driv
 // Exposure and white gains, then the gamut mapping, on every drive value; the EIA pixels.
 void exposeAndMapGamut(const EiLayout& L, const PanelColor& color, const SynthesisSettings& s, SynthesisResult& res) {
   SynthesisStats& st = res.stats;
-  const Vec3 lumW = Vec3(color.luminanceWeights());
-  Vec3 gains = Vec3(float(st.exposureUsed));
-  if (s.whiteBalanceD65) gains *= Vec3(color.d65WhiteGains());
+  const FieldToDrive toDrive(color, {st.exposureUsed, s.whiteBalanceD65, s.gamut, s.correction});
   Image& img = res.eia;
   std::mutex statsMutex;
   parallelForRange(
@@ -230,8 +228,7 @@ void exposeAndMapGamut(const EiLayout& L, const PanelColor& color, const Synthes
         GamutStats local;
         for (int64_t r = a; r < b; ++r) {
           float* o = &res.drive[size_t(r) * 3];
-          Vec3 d = Vec3(o[0], o[1], o[2]) * gains;
-          mapToGamut(d, lumW, s.gamut, local);
+          const Vec3 d = toDrive.fromNative(Vec3(o[0], o[1], o[2]), local);
           o[0] = d.x, o[1] = d.y, o[2] = d.z;
           PixelCoord p = eiaPixel(L, rayAddress(L, r));
           float* px = &img.data[(size_t(L.panelRow0 + p.row) * size_t(img.width) + size_t(L.panelCol0 + p.col)) *

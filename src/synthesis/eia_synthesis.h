@@ -19,6 +19,7 @@
 // values in [0, 1]; with `aovs`, A is the mean opacity and Z the mean display z (mm, > 0 in
 // front of the MLA) of the first surface over the samples that hit one (0 where A = 0).
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,9 @@ struct SynthesisSettings {
                                 // scene, to full drive (1): at most 1 % of them clip
   bool whiteBalanceD65 = false; // gains so that D65 drives (1, 1, 1) (panel_color.h)
   GamutMapping gamut = GamutMapping::Clip;
+  // Panel-side colour correction applied to the drive values after the gamut mapping (a
+  // calibration from `inim calibrate`, read with loadCalibration); null: none.
+  std::shared_ptr<const ColourModel> correction;
   bool aovs = false;            // A (opacity) and Z (display z, mm) channels
   bool progress = true;         // a bar on a terminal only
   int raysPerBatch = 4096;      // field queries per Field::query call

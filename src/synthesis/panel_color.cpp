@@ -102,4 +102,25 @@ bool mapToGamut(Vec3& d, const Vec3& w, GamutMapping mapping) {
   return out;
 }
 
+FieldToDrive::FieldToDrive(const PanelColor& color, const DriveSettings& settings)
+    : settings_(settings),
+      xyzToDrive_(glm::mat3(color.xyzToDrive())),
+      gains_(Vec3(float(settings.exposure))),
+      lumWeights_(Vec3(color.luminanceWeights())) {
+  if (settings.whiteBalanceD65) gains_ *= Vec3(color.d65WhiteGains());
+}
+
+Vec3 FieldToDrive::fromNative(const Vec3& nativeDrive, GamutStats& stats) const {
+  Vec3 d = nativeDrive * gains_;
+  mapToGamut(d, lumWeights_, settings_.gamut, stats);
+  if (!settings_.correction) return d;
+  const Vec3d c = settings_.correction->apply(Vec3d(d));
+  return glm::clamp(Vec3(c), Vec3(0.0f), Vec3(1.0f));
+}
+
+Vec3 FieldToDrive::fromXyz(const Vec3& xyz) const {
+  GamutStats unused;
+  return fromXyz(xyz, unused);
+}
+
 }  // namespace inim

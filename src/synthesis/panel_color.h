@@ -19,9 +19,11 @@
 // clamps the grey itself to [0, 1] when the luminance is outside it).
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 
+#include "calibration/colour_model.h"
 #include "core/geometry.h"
 #include "display/panel.h"
 #include "spectral/spectrum.h"
@@ -87,5 +89,35 @@ inline void mapToGamut(Vec3& drive, const Vec3& w, GamutMapping m, GamutStats& s
     if (hi > 1.0f + kGamutTolerance) ++st.overRange;
   }
 }
+
+// The colour path of `inim eia` from a field colour (XYZ) to the drive values on the panel, in
+// one place so that `inim calibrate` drives its patches exactly as an EIA is made:
+// native drive (xyzToDrive, in float as the synthesis computes it) -> exposure x white gains ->
+// gamut mapping -> the optional panel-side correction (a calibration LUT or model, drive ->
+// drive), whose output is clamped to [0, 1] since a panel cannot go beyond full drive.
+struct DriveSettings {
+  double exposure = 1.0;
+  bool whiteBalanceD65 = false;
+  GamutMapping gamut = GamutMapping::Clip;
+  std::shared_ptr<const ColourModel> correction;  // null: uncalibrated
+};
+
+class FieldToDrive {
+ public:
+  FieldToDrive(const PanelColor& color, const DriveSettings& settings);
+  // Native linear drive of an XYZ (field luminance units), before exposure.
+  Vec3 native(const Vec3& xyz) const { return xyzToDrive_ * xyz; }
+  // Exposure, white gains, gamut mapping (counted in `stats`) and correction of a native drive.
+  Vec3 fromNative(const Vec3& nativeDrive, GamutStats& stats) const;
+  Vec3 fromXyz(const Vec3& xyz, GamutStats& stats) const { return fromNative(native(xyz), stats); }
+  Vec3 fromXyz(const Vec3& xyz) const;
+  const Vec3& gains() const { return gains_; }
+  const DriveSettings& settings() const { return settings_; }
+
+ private:
+  DriveSettings settings_;
+  glm::mat3 xyzToDrive_;
+  Vec3 gains_, lumWeights_;
+};
 
 }  // namespace inim
