@@ -47,6 +47,11 @@ struct InversionSettings {
   double jacobianStep = 1e-6;       // finite-difference step in drive units
   double reachedTolerance = 1e-6;   // |F(x) - t| above which a target counts as out of range
   int guessSamplesPerAxis = 5;      // grid of F samples for the 3x3 starting guess
+  // Where the solutions may lie, per channel. [0, 1]: drives a panel can show, so targets out
+  // of reach get the nearest drive on the boundary. A wider range lets the table continue the
+  // inverse past the boundary (the user clamps after interpolating), so cells that straddle it
+  // interpolate exactly for a smooth F; F must then be defined there too.
+  double lowerBound = 0.0, upperBound = 1.0;
 };
 
 struct InverseLut {
@@ -56,11 +61,11 @@ struct InverseLut {
   size_t unreachedCount = 0;        // nodes with residual > reachedTolerance (outside F's range)
 };
 
-// For every node target t of [0,1]^3, the drive x in [0,1]^3 with F(x) = t, or for targets
-// outside F's range the drive (on the domain's boundary) closest to it in the least-squares
-// sense. Projected damped Gauss-Newton with a finite-difference Jacobian, started from a 3x3
+// For every node target t of [0,1]^3, the drive x in the bounds (default [0,1]^3) with F(x) = t,
+// or for targets outside F's range the drive (on the bounds' boundary) closest to it in the
+// least-squares sense. Projected damped Gauss-Newton with a finite-difference Jacobian, started from a 3x3
 // matrix fitted to map F's samples back to their drives. F should be smooth and monotone-ish
-// (a display: more drive, more light); F is called only inside [0,1]^3.
+// (a display: more drive, more light); F is called only inside the bounds.
 InverseLut invertToLut(const ColourFunction& forward, const InversionSettings& settings = {});
 
 }  // namespace inim

@@ -11,25 +11,27 @@
 namespace inim {
 namespace {
 
-Vec3d clampToUnitCube(const Vec3d& x) { return glm::clamp(x, Vec3d(0.0), Vec3d(1.0)); }
+Vec3d clampToBounds(const Vec3d& x, const InversionSettings& s) {
+  return glm::clamp(x, Vec3d(s.lowerBound), Vec3d(s.upperBound));
+}
 
 Vec3d evaluate(const ColourFunction& forward, const Vec3d& drive) {
   const Vec3d v = forward(drive);
   if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
     throw InputError("", "forward", "F(" + std::to_string(drive.x) + ", " + std::to_string(drive.y) + ", " +
                                         std::to_string(drive.z) + ")",
-                     "finite values everywhere on [0,1]^3");
+                     "finite values everywhere on the drive domain");
   return v;
 }
 
 // Columns dF/dx_i by central differences, one-sided at the domain's edges (F is never called
-// outside [0,1]^3).
-glm::dmat3 jacobian(const ColourFunction& forward, const Vec3d& x, double step) {
+// outside the bounds).
+glm::dmat3 jacobian(const ColourFunction& forward, const Vec3d& x, const InversionSettings& s) {
   glm::dmat3 j(0.0);
   for (int i = 0; i < 3; ++i) {
     Vec3d lo = x, hi = x;
-    lo[i] = std::max(0.0, x[i] - step);
-    hi[i] = std::min(1.0, x[i] + step);
+    lo[i] = std::max(s.lowerBound, x[i] - s.jacobianStep);
+    hi[i] = std::min(s.upperBound, x[i] + s.jacobianStep);
     j[i] = (evaluate(forward, hi) - evaluate(forward, lo)) / (hi[i] - lo[i]);
   }
   return j;
@@ -37,13 +39,13 @@ glm::dmat3 jacobian(const ColourFunction& forward, const Vec3d& x, double step) 
 
 // The Gauss-Newton step for the variables not held at a bound: a variable at 0 whose descent
 // direction points below 0 (or at 1 and above 1) is fixed for this step.
-Vec3d boundedGaussNewtonStep(const glm::dmat3& j, const Vec3d& x, const Vec3d& residual) {
+Vec3d boundedGaussNewtonStep(const glm::dmat3& j, const Vec3d& x, const Vec3d& residual, const InversionSettings& s) {
   const Vec3d descent = glm::transpose(j) * residual;
   glm::dmat3 normal = glm::transpose(j) * j;
   Vec3d rhs = descent;
   const double damping = 1e-12 * (normal[0][0] + normal[1][1] + normal[2][2]) + 1e-300;
   for (int i = 0; i < 3; ++i) {
-    const bool held = (x[i] <= 0.0 && descent[i] < 0.0) || (x[i] >= 1.0 && descent[i] > 0.0);
+    const bool held = (x[i] <= s.lowerBound && descent[i] < 0.0) || (x[i] >= s.upperBound && descent[i] > 0.0);
     if (held) {
       for (int k = 0; k < 3; ++k) normal[i][k] = normal[k][i] = 0.0;
       normal[i][i] = 1.0;
@@ -62,15 +64,15 @@ struct NodeSolution {
 
 NodeSolution solveNode(const ColourFunction& forward, const Vec3d& target, const Vec3d& guess,
                        const InversionSettings& settings) {
-  Vec3d x = clampToUnitCube(guess);
+  Vec3d x = clampToBounds(guess, settings);
   Vec3d residual = target - evaluate(forward, x);
   double error = glm::length(residual);
   for (int iteration = 0; iteration < settings.maxIterations && error > settings.tolerance; ++iteration) {
-    const Vec3d step = boundedGaussNewtonStep(jacobian(forward, x, settings.jacobianStep), x, residual);
+    const Vec3d step = boundedGaussNewtonStep(jacobian(forward, x, settings), x, residual, settings);
     bool accepted = false;
     // Damping by halving until the residual decreases (the projection can spoil a full step).
     for (double scale = 1.0; scale > 1e-6 && !accepted; scale *= 0.5) {
-      const Vec3d trial = clampToUnitCube(x + scale * step);
+      const Vec3d trial = clampToBounds(x + scale * step, settings);
       const Vec3d trialResidual = target - evaluate(forward, trial);
       if (glm::length(trialResidual) < error) {
         x = trial, residual = trialResidual, error = glm::length(trialResidual);

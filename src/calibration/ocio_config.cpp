@@ -61,17 +61,24 @@ void writeOcioConfig(const std::string& configPath, const OcioColourSpaceSetting
   writeTextFile(configPath, text.str());
 }
 
-CalibrationFiles exportCalibration(const std::string& folder, const std::string& stem, const Lut3d& lut,
-                                   OcioColourSpaceSettings space, LutFormat configFormat,
+CalibrationFiles exportCalibration(OutputSet& outputs, const std::string& folder, const std::string& stem,
+                                   const Lut3d& lut, OcioColourSpaceSettings space, LutFormat configFormat,
                                    const std::string& baseConfigPath) {
   namespace fs = std::filesystem;
   CalibrationFiles files{(fs::path(folder) / (stem + ".cube")).string(), (fs::path(folder) / (stem + ".clf")).string(),
                          (fs::path(folder) / (stem + ".ocio")).string()};
   space.lutFile = fs::path(configFormat == LutFormat::Cube ? files.cube : files.clf).filename().string();
-  OutputSet outputs;
   writeCube(outputs.add(files.cube), lut, stem);
   writeClf(outputs.add(files.clf), ClfProcess{std::nullopt, lut}, stem);
   writeOcioConfig(outputs.add(files.config), space, baseConfigPath);
+  return files;
+}
+
+CalibrationFiles exportCalibration(const std::string& folder, const std::string& stem, const Lut3d& lut,
+                                   OcioColourSpaceSettings space, LutFormat configFormat,
+                                   const std::string& baseConfigPath) {
+  OutputSet outputs;
+  CalibrationFiles files = exportCalibration(outputs, folder, stem, lut, std::move(space), configFormat, baseConfigPath);
   outputs.commit();
   return files;
 }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "calibration/lut3d.h"
+#include "core/output_file.h"
 
 namespace inim {
 
@@ -33,6 +34,10 @@ struct CalibrationFiles {
 // Writes <folder>/<stem>.cube, <folder>/<stem>.clf and <folder>/<stem>.ocio, whose colour space
 // reads the file in `configFormat`; all three are written or none (through OutputSet).
 // space.lutFile is set here.
+// The same into `outputs` (committed by the caller with its other outputs).
+CalibrationFiles exportCalibration(OutputSet& outputs, const std::string& folder, const std::string& stem,
+                                   const Lut3d& lut, OcioColourSpaceSettings space,
+                                   LutFormat configFormat = LutFormat::Clf, const std::string& baseConfigPath = "");
 CalibrationFiles exportCalibration(const std::string& folder, const std::string& stem, const Lut3d& lut,
                                    OcioColourSpaceSettings space, LutFormat configFormat = LutFormat::Clf,
                                    const std::string& baseConfigPath = "");

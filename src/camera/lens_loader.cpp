@@ -1,4 +1,3 @@
-#include "core/format.h"
 #include "camera/lens_loader.h"
 
 #include <algorithm>
@@ -10,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/output_file.h"
 
 namespace fs = std::filesystem;
@@ -17,13 +17,6 @@ namespace fs = std::filesystem;
 namespace inim {
 
 namespace {
-
-std::string trim(const std::string& s) {
-  size_t a = s.find_first_not_of(" \t\r\n");
-  if (a == std::string::npos) return "";
-  size_t b = s.find_last_not_of(" \t\r\n");
-  return s.substr(a, b - a + 1);
-}
 
 bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;

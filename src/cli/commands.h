@@ -17,6 +17,7 @@ void addLensCommand(CLI::App& app);       // inim lens info FILE
 void addViewCommand(CLI::App& app);       // inim view
 void addReferenceCommand(CLI::App& app);  // inim reference
 void addFig11Command(CLI::App& app);      // inim fig11
+void addCalibrateCommand(CLI::App& app);  // inim calibrate
 void addStudyCommand(CLI::App& app);      // inim study NAME
 void addQueryCommand(CLI::App& app);      // inim query --field F --rays R --out C
 void addTrainCommand(CLI::App& app);      // inim train --data DIR --out MODEL

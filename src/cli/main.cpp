@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   inim::cli::addViewCommand(app);
   inim::cli::addReferenceCommand(app);
   inim::cli::addFig11Command(app);
+  inim::cli::addCalibrateCommand(app);
   inim::cli::addStudyCommand(app);
   inim::cli::addQueryCommand(app);
   inim::cli::addCaptureCommand(app);

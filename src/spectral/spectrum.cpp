@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace inim {
 
@@ -80,13 +81,6 @@ float GaussianSpectrum::operator()(float l) const {
 // ---------------------------------------------------------------- CSV
 
 namespace {
-
-std::string trim(const std::string& s) {
-  size_t a = s.find_first_not_of(" \t\r\n");
-  if (a == std::string::npos) return "";
-  size_t b = s.find_last_not_of(" \t\r\n");
-  return s.substr(a, b - a + 1);
-}
 
 std::vector<std::string> splitCsv(const std::string& line) {
   std::vector<std::string> out;

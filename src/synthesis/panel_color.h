@@ -36,6 +36,7 @@ GamutMapping parseGamut(const std::string& s, const std::string& key = "gamut");
 
 class PanelColor {
  public:
+  PanelColor() = default;
   explicit PanelColor(const Panel& panel);
 
   // Columns: XYZ of R, G, B at drive 1, normalised so drive (1,1,1) has Y = 1.

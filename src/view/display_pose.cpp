@@ -32,4 +32,18 @@ std::string DisplayPose::describe() const {
   return b;
 }
 
+std::vector<NamedPose> fig11Poses(double a, double distanceMm) {
+  auto label = [](const char* axis, double deg) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%s %+g°", axis, deg);
+    return std::string(b);
+  };
+  std::vector<NamedPose> poses = {{"centre", "0°", {0.0, 0.0, distanceMm}},
+                                  {"left", label("H", -a), {-a, 0.0, distanceMm}},
+                                  {"right", label("H", a), {a, 0.0, distanceMm}},
+                                  {"top", label("V", a), {0.0, a, distanceMm}},
+                                  {"bottom", label("V", -a), {0.0, -a, distanceMm}}};
+  return poses;
+}
+
 }  // namespace inim

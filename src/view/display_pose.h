@@ -16,6 +16,9 @@
 // world. The simulation works in the display frame: the camera pose is expressed there
 // (cameraPose()), so camera rays come out of the camera model already in the display frame.
 // Focus (camera_config.h) defaults to the eye-to-centre distance, i.e. the MLA plane.
+#include <string>
+#include <vector>
+
 #include "camera/camera_model.h"
 #include "core/transform.h"
 
@@ -36,5 +39,16 @@ struct DisplayPose {
   // "H +7 deg, V 0 deg, camera 350 mm"
   std::string describe() const;
 };
+
+// A pose with the names reports use for it.
+struct NamedPose {
+  std::string name;   // file-name stem: centre, left, right, top, bottom
+  std::string label;  // "0°", "H -7°", ...
+  DisplayPose pose;
+};
+
+// The paper's Fig. 11 set: centre, left (H -a), right (H +a), top (V +a), bottom (V -a): the
+// display turned about its vertical axis for left/right and its horizontal axis for top/bottom.
+std::vector<NamedPose> fig11Poses(double angleDeg, double distanceMm);
 
 }  // namespace inim
