@@ -228,7 +228,9 @@ Json stagesJson(const std::vector<StageRow>& rows, std::string& dominant) {
   for (const StageRow& s : rows) {
     j.push_back({{"stage", s.stage}, {"pose", s.pose}, {"note", s.note}, {"in_default_chain", s.inDefaultChain},
                  {"de2000", deJson(s.colorimetric)}});
-    if (s.inDefaultChain && s.stage.rfind("whole chain", 0) != 0 && s.colorimetric.mean > worst)
+    // The colorimetric chain's stages (the camera's metamerism is reported beside them).
+    if (s.inDefaultChain && s.stage.rfind("whole chain", 0) != 0 && s.stage != "camera metamerism" &&
+        s.colorimetric.mean > worst)
       worst = s.colorimetric.mean, dominant = s.stage + (s.pose.empty() ? "" : " (" + s.pose + ")");
   }
   return j;
@@ -302,7 +304,7 @@ void writeTables(OutputSet& out, const fs::path& dir, const CalibrateResult& r) 
 
 }  // namespace
 
-CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserver& observer) {
+CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserver& observer, OutputSet* outputs) {
   validate(s);
   const Loaded l = load(s);
   CalibrateResult r;
@@ -353,13 +355,14 @@ CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserv
   r.verifySeconds = since(t);
   j["seconds"] = {{"characterise", r.characteriseSeconds}, {"fit", r.fitSeconds}, {"verify", r.verifySeconds}};
 
-  OutputSet out;
+  OutputSet own;
+  OutputSet& out = outputs ? *outputs : own;
   const fs::path dir(s.outDir);
   r.files = exportCalibration(out, s.outDir, "panel_correction", *r.exported, OcioColourSpaceSettings{});
   j["files"] = {{"cube", r.files.cube}, {"clf", r.files.clf}, {"ocio", r.files.config}};
   writeTables(out, dir, r);
   writeText(out.add((dir / "calibration.json").string()), j.dump(2) + "\n");
-  out.commit();
+  if (!outputs) out.commit();
   return r;
 }
 
@@ -369,7 +372,7 @@ std::string calibrationSummary(const CalibrateResult& r) {
     t += "  " + s.stage + (s.pose.empty() ? "" : " [" + s.pose + "]") + ": " + formatNumber(s.colorimetric.mean, "%.2f") +
          " / " + formatNumber(s.colorimetric.p95, "%.2f") + " / " + formatNumber(s.colorimetric.max, "%.2f") +
          (s.inDefaultChain ? "" : "  (not in this chain)") + "\n";
-  t += "dominant stage: " + r.json.value("dominant_stage", std::string()) + "\n";
+  t += "dominant stage of the colorimetric chain: " + r.json.value("dominant_stage", std::string()) + "\n";
   t += "hold-out in gamut (mean / p95 / max), before -> after (" + r.chosen + ", one correction for all poses):\n";
   const Json& h = r.json["holdout"]["per_pose"];
   for (const PoseChain& c : r.chains) {

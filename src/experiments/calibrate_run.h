@@ -76,7 +76,10 @@ struct CalibrateObserver {
 
 // InputError naming the setting (display, camera, poses, field_space, grid_levels, correction,
 // patches, angle_deg, pose, ...) before any output.
-CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserver& observer = {});
+// `outputs`: add the files to it and leave the commit to the caller (a study's report);
+// null: write them and commit.
+CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserver& observer = {},
+                               OutputSet* outputs = nullptr);
 
 // The ColorChecker as measured at `chain`'s pose through `toDrive`: per patch outcome.
 std::vector<PatchOutcome> measureSet(const CalibrateResult& r, const FieldToDrive& toDrive, const PoseChain& chain,

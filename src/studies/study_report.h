@@ -73,6 +73,10 @@ class ReportWriter {
            const std::vector<std::vector<std::string>>& rows);
   void plot(const std::string& name, const Plot& plot);
   void image(const std::string& name, const Image& image);
+  // A file the caller writes itself: the temporary path for `name` (recorded for commit).
+  std::string file(const std::string& name) { return add(name); }
+  // The report's outputs, for runs that add files of their own (renamed with the report).
+  OutputSet& outputs() { return out_; }
 
   // Appends the Reproduce block (with an optional comment on the command), writes report.md and
   // renames every file into place. Returns the final paths, report.md first, then the files in
