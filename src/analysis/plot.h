@@ -2,9 +2,10 @@
 // Figures for the reports of validation studies ("sharpness vs depth", "brightness vs
 // rotation angle", "RMSE vs time"), drawn with Cairo and Pango (src/draw) into an image (PNG).
 //
-// A plot has one pair of axes (linear or base-10 log, ticks and tick labels, titles) and
-// layers, bottom to top: a heat map (with a colour bar at the right), filled polygons, bars,
-// marker lines (vertical at an x, horizontal at a y), line / scatter series, text annotations.
+// A plot has one pair of axes (linear or base-10 log, ticks and tick labels, titles; named
+// categories along x) and layers, bottom to top: a heat map (with a colour bar at the right),
+// filled polygons, bars, marker lines (vertical at an x, horizontal at a y), line / scatter
+// series (markers: disc, circle, triangle, cross), text annotations.
 // The legend lists the named series, polygons and bars; it goes where it covers no data:
 // the free corner of the plot area, else any free place inside, else outside at the right.
 // The data behind each plot goes to CSV (csv.h, included here).
@@ -24,6 +25,9 @@
 
 namespace inim {
 
+// The shape of a series' markers: filled disc, open circle, filled triangle (point up), cross (x).
+enum class MarkerShape { Disc, Circle, Triangle, Cross };
+
 struct PlotSeries {
   std::string name;           // legend entry; empty: not listed in the legend
   std::vector<double> x, y;   // same length; a non-finite value breaks the line there
@@ -33,6 +37,7 @@ struct PlotSeries {
   double lineWidth = 2.0;     // px
   double markerRadius = 3.5;  // px
   double dash = 0.0;          // > 0: dashed line, dash length (and gap) in px
+  MarkerShape marker = MarkerShape::Disc;
 };
 
 // A marker line across the plot: vertical at x = value (markers) or horizontal at
@@ -89,6 +94,11 @@ struct PlotAxis {
   std::string title;
   std::optional<double> min, max;  // default: the data range (with markers), widened to whole ticks
   bool log = false;                // base-10 log scale; values <= 0 are left out
+  // Category names (x axis only, linear): the ticks are at x = 0, 1, ..., n-1 and labelled
+  // with these names, turned to read upwards when they do not fit side by side (patches of a
+  // colour chart under grouped bars). The default range is then [-0.5, n - 0.5]; no grid
+  // lines are drawn across at the ticks.
+  std::vector<std::string> categories{};
 };
 
 struct Plot {
@@ -122,6 +132,7 @@ struct PlotFrame {
   double xMin = 0, xMax = 1, yMin = 0, yMax = 1;
   bool logX = false, logY = false;
   std::vector<double> xTicks, yTicks;
+  bool xLabelsUp = false;      // the x tick labels (categories) are turned to read upwards
   PixelBox legend;             // the legend's box; empty without a legend
   bool legendOutside = false;  // no free room inside: the legend is right of the plot area
   PixelBox colorBar;           // the heat map's colour bar; empty without a heat map
@@ -139,7 +150,8 @@ struct PlotFrame {
 
 // The frame renderPlot() uses: data ranges, ticks, the plot area, the legend's place (which
 // depends on where the data is drawn) and the colour bar. InputError when a layer's x and y
-// lengths differ, a heat map's size does not match its values, or an explicit range is empty.
+// lengths differ, a heat map's size does not match its values, an explicit range is empty, or
+// categories are given for the y axis or a log x axis.
 PlotFrame plotFrame(const Plot& plot);
 Image renderPlot(const Plot& plot);
 // renderPlot + writeImage (PNG by extension).

@@ -66,6 +66,19 @@ void axisRange(const PlotAxis& axis, const std::vector<double>& values, int maxT
   }
 }
 
+// A category axis: ticks at the categories' indices inside the range, by default
+// [-0.5, n - 0.5] (whatever the data's extent).
+void categoryRange(const PlotAxis& axis, double& lo, double& hi, std::vector<double>& ticks) {
+  if (axis.log) throw InputError("", "x axis categories", "on a log axis", "a linear axis");
+  lo = axis.min.value_or(-0.5);
+  hi = axis.max.value_or(double(axis.categories.size()) - 0.5);
+  if (!(hi > lo))
+    throw InputError("", "x axis range", formatTick(lo, 1e-6) + " .. " + formatTick(hi, 1e-6), "min < max");
+  ticks.clear();
+  for (size_t i = 0; i < axis.categories.size(); ++i)
+    if (double(i) >= lo && double(i) <= hi) ticks.push_back(double(i));
+}
+
 void checkLengths(size_t nx, size_t ny, const std::string& what) {
   if (nx != ny)
     throw InputError("", what, std::to_string(nx) + " x values and " + std::to_string(ny) + " y values",
@@ -142,7 +155,7 @@ void horizontalLayout(const Plot& p, const plotimpl::Style& st, double colorBarW
   // Room for the last x tick label, centred on the right edge; a colour bar or legend there
   // starts a font size further right.
   const double lastX =
-      f.xTicks.empty() ? 0.0 : draw::measureText(plotimpl::tickLabel(f.xTicks, f.logX, f.xTicks.back()), st.tick).width;
+      f.xTicks.empty() ? 0.0 : draw::measureText(plotimpl::xTickLabel(p, f, f.xTicks.back()), st.tick).width;
   const double room = colorBarW > 0.0 || reserve > 0.0 ? std::max(lastX / 2.0 - p.fontSize, 0.0)
                                                        : std::max(lastX / 2.0, st.gap);
   f.right = std::floor(p.width - st.margin - room - colorBarW - reserve);
@@ -152,6 +165,20 @@ void horizontalLayout(const Plot& p, const plotimpl::Style& st, double colorBarW
     f.colorBar.y0 = f.top;
     f.colorBar.y1 = f.bottom;
   }
+}
+
+// Category labels that do not fit side by side (in the plot area as narrow as an outside
+// legend would make it) are turned to read upwards; the plot area's bottom moves up for them.
+void turnCategoryLabels(const Plot& p, const plotimpl::Style& st, PlotFrame& f) {
+  if (p.x.categories.empty() || f.xTicks.empty()) return;
+  double widest = 0.0;
+  for (double t : f.xTicks) widest = std::max(widest, draw::measureText(plotimpl::xTickLabel(p, f, t), st.tick).width);
+  const double legendW = p.legend ? plotimpl::legendSize(p).x + std::round(p.fontSize) : 0.0;
+  const double spacing = (f.right - legendW - f.left) / (f.xMax - f.xMin);  // px per category
+  if (widest + 2.0 * st.gap <= spacing) return;
+  f.xLabelsUp = true;
+  f.bottom -= std::ceil(std::max(0.0, widest - draw::measureText("0", st.tick).height));
+  if (!f.colorBar.empty()) f.colorBar.y1 = f.bottom;
 }
 
 void checkRoom(const Plot& p, const PlotFrame& f) {
@@ -216,7 +243,12 @@ PlotFrame plotFrame(const Plot& p) {
   PlotFrame f;
   f.logX = p.x.log;
   f.logY = p.y.log;
-  axisRange(p.x, xs, std::clamp(int(p.width / (7.0 * p.fontSize)), 3, 10), f.xMin, f.xMax, f.xTicks, "x");
+  if (!p.y.categories.empty())
+    throw InputError("", "y axis categories", std::to_string(p.y.categories.size()) + " names", "categories on the x axis only");
+  if (p.x.categories.empty())
+    axisRange(p.x, xs, std::clamp(int(p.width / (7.0 * p.fontSize)), 3, 10), f.xMin, f.xMax, f.xTicks, "x");
+  else
+    categoryRange(p.x, f.xMin, f.xMax, f.xTicks);
   axisRange(p.y, ys, std::clamp(int(p.height / (3.5 * p.fontSize)), 3, 10), f.yMin, f.yMax, f.yTicks, "y");
 
   const double th = draw::measureText("0", st.tick).height;
@@ -228,6 +260,7 @@ PlotFrame plotFrame(const Plot& p) {
   f.bottom = std::floor(p.height - st.margin - xTitle - th - st.tickLength - st.gap);
   const double colorBarW = p.heatMap ? colorBarRange(p, st, f) : 0.0;
   horizontalLayout(p, st, colorBarW, 0.0, f);
+  turnCategoryLabels(p, st, f);
   checkRoom(p, f);
   placeLegend(p, st, colorBarW, f);
   checkRoom(p, f);

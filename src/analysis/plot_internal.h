@@ -19,6 +19,8 @@ struct Style {
 bool usable(double v, bool log);  // finite, and > 0 on a log axis
 // The label of tick t among `ticks` (decimals from their spacing; each its own on a log axis).
 std::string tickLabel(const std::vector<double>& ticks, bool log, double t);
+// The label of x tick t: its category name, else as tickLabel.
+std::string xTickLabel(const Plot& p, const PlotFrame& f, double t);
 
 // Default colours: series by index, then polygons, then bars, along one palette.
 Vec3 seriesColor(const Plot& p, size_t i);
@@ -33,6 +35,10 @@ Vec3 heatColor(const PlotHeatMap& h, double v, double cMin, double cMax);
 // lines, series, annotations and marker labels. Also drawn on a transparent canvas to find
 // where the data is, for the legend.
 void drawContent(draw::Canvas& cv, const Plot& p, const PlotFrame& f);
+// One marker of a series (radius as PlotSeries::markerRadius), also in the legend.
+void drawMarker(draw::Canvas& cv, MarkerShape shape, glm::dvec2 centre, double radius, const Vec3& color);
+// How far a marker of this radius reaches from its centre, px.
+double markerReach(double radius);
 
 // The legend's size for the plot's named layers; zero without any.
 glm::dvec2 legendSize(const Plot& p);

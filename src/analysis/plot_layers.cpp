@@ -116,7 +116,7 @@ void drawSeries(draw::Canvas& cv, const Plot& p, const PlotFrame& f, size_t i, b
   }
   if (!lines && s.markers && s.markerRadius > 0.0)
     for (size_t k = 0; k < s.x.size(); ++k)
-      if (f.insideX(s.x[k]) && f.insideY(s.y[k])) cv.disc(f.toPixel(s.x[k], s.y[k]), s.markerRadius, color);
+      if (f.insideX(s.x[k]) && f.insideY(s.y[k])) drawMarker(cv, s.marker, f.toPixel(s.x[k], s.y[k]), s.markerRadius, color);
 }
 
 draw::TextAnchor anchorOf(TextAnchorPoint a) {
@@ -163,6 +163,39 @@ void drawMarkerLabels(draw::Canvas& cv, const Plot& p, const PlotFrame& f, const
 
 }  // namespace
 
+// Open and line shapes are drawn a little larger than a disc of the same radius, so that
+// they look as big.
+void drawMarker(draw::Canvas& cv, MarkerShape shape, P2 c, double r, const Vec3& color) {
+  const double w = std::max(1.5, 0.4 * r);
+  switch (shape) {
+    case MarkerShape::Disc:
+      cv.disc(c, r, color);
+      break;
+    case MarkerShape::Circle: {
+      std::vector<P2> ring(32);
+      for (size_t k = 0; k < ring.size(); ++k) {
+        const double a = 2.0 * kPi * double(k) / double(ring.size());
+        ring[k] = c + (r + 0.5 * w) * P2(std::cos(a), std::sin(a));
+      }
+      cv.strokePolygon(ring, {color, w});
+      break;
+    }
+    case MarkerShape::Triangle: {
+      const double R = 1.3 * r;  // circumradius; the centroid is on the point
+      cv.fillPolygon({c + R * P2(0.0, -1.0), c + R * P2(0.866, 0.5), c + R * P2(-0.866, 0.5)}, color);
+      break;
+    }
+    case MarkerShape::Cross: {
+      const double d = 1.1 * r;
+      cv.line(c + P2(-d, -d), c + P2(d, d), {color, w});
+      cv.line(c + P2(-d, d), c + P2(d, -d), {color, w});
+      break;
+    }
+  }
+}
+
+double markerReach(double r) { return 1.3 * r + std::max(1.5, 0.4 * r); }
+
 void drawContent(draw::Canvas& cv, const Plot& p, const PlotFrame& f) {
   const Style st(p);
   cv.pushClip(f.left, f.top, f.right, f.bottom);
@@ -174,7 +207,7 @@ void drawContent(draw::Canvas& cv, const Plot& p, const PlotFrame& f) {
   cv.popClip();
   // Markers may reach past the plot area by their radius.
   double pad = 0.0;
-  for (const PlotSeries& s : p.series) pad = std::max(pad, std::ceil(s.markerRadius) + 1.0);
+  for (const PlotSeries& s : p.series) pad = std::max(pad, std::ceil(markerReach(s.markerRadius)) + 1.0);
   cv.pushClip(f.left - pad, f.top - pad, f.right + pad, f.bottom + pad);
   for (size_t i = 0; i < p.series.size(); ++i) drawSeries(cv, p, f, i, false);
   cv.popClip();

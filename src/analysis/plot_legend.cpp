@@ -111,7 +111,7 @@ void drawLegend(draw::Canvas& cv, const Plot& p, const PlotFrame& f) {
     const double sx0 = b.x0 + m.pad, sx1 = sx0 + m.sample;
     if (const PlotSeries* s = e[r].series) {
       if (s->line && s->lineWidth > 0.0) cv.line({sx0, cy}, {sx1, cy}, {e[r].color, s->lineWidth, s->dash});
-      if (s->markers && s->markerRadius > 0.0) cv.disc({0.5 * (sx0 + sx1), cy}, s->markerRadius, e[r].color);
+      if (s->markers && s->markerRadius > 0.0) drawMarker(cv, s->marker, {0.5 * (sx0 + sx1), cy}, s->markerRadius, e[r].color);
     } else {
       const double hh = std::round(0.35 * m.rowH);
       cv.fillRect(sx0, cy - hh, sx1, cy + hh, e[r].color, e[r].alpha);

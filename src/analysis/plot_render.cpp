@@ -19,19 +19,21 @@ const Vec3 kBlack(0.0f), kText(0.1f), kGrid(0.88f);
 double tickX(const PlotFrame& f, double t) { return std::clamp(std::floor(f.pixelX(t)), f.left, f.right - 1.0) + 0.5; }
 double tickY(const PlotFrame& f, double t) { return std::clamp(std::floor(f.pixelY(t)), f.top, f.bottom - 1.0) + 0.5; }
 
-void drawGrid(draw::Canvas& cv, const PlotFrame& f) {
-  for (double t : f.xTicks)
-    if (const double x = tickX(f, t); x > f.left + 1.0 && x < f.right - 1.0) cv.line({x, f.top}, {x, f.bottom}, {kGrid});
+void drawGrid(draw::Canvas& cv, const Plot& p, const PlotFrame& f) {
+  if (p.x.categories.empty())
+    for (double t : f.xTicks)
+      if (const double x = tickX(f, t); x > f.left + 1.0 && x < f.right - 1.0) cv.line({x, f.top}, {x, f.bottom}, {kGrid});
   for (double t : f.yTicks)
     if (const double y = tickY(f, t); y > f.top + 1.0 && y < f.bottom - 1.0) cv.line({f.left, y}, {f.right, y}, {kGrid});
 }
 
-void drawAxes(draw::Canvas& cv, const PlotFrame& f, const Style& st) {
+// Turned x labels (categories) end at the axis, reading upwards.
+void drawAxes(draw::Canvas& cv, const Plot& p, const PlotFrame& f, const Style& st) {
   for (double t : f.xTicks) {
     const double x = tickX(f, t);
     cv.line({x, f.bottom}, {x, f.bottom + st.tickLength}, {kBlack});
-    cv.text(plotimpl::tickLabel(f.xTicks, f.logX, t), {x, f.bottom + st.tickLength + st.gap}, st.tick, kText,
-            {Align::Centre, Align::Start});
+    cv.text(plotimpl::xTickLabel(p, f, t), {x, f.bottom + st.tickLength + st.gap}, st.tick, kText,
+            {Align::Centre, Align::Start}, f.xLabelsUp);
   }
   for (double t : f.yTicks) {
     const double y = tickY(f, t);
@@ -68,8 +70,10 @@ void drawColorBar(draw::Canvas& cv, const Plot& p, const PlotFrame& f, const Sty
 void drawTitles(draw::Canvas& cv, const Plot& p, const PlotFrame& f, const Style& st) {
   const double cx = 0.5 * (f.left + f.right);
   if (!p.title.empty()) {
-    const double w = draw::measureText(p.title, st.title).width;
-    cv.text(p.title, {std::max(st.margin + 0.5 * w, cx), st.margin}, st.title, kBlack, {Align::Centre, Align::Start});
+    // Centred over the plot area, moved left (then right) to stay inside the image.
+    const double hw = 0.5 * draw::measureText(p.title, st.title).width;
+    cv.text(p.title, {std::max(st.margin + hw, std::min(cx, p.width - st.margin - hw)), st.margin}, st.title, kBlack,
+            {Align::Centre, Align::Start});
   }
   if (!p.x.title.empty())
     cv.text(p.x.title, {cx, p.height - st.margin}, st.axisTitle, kBlack, {Align::Centre, Align::End});
@@ -83,9 +87,9 @@ Image renderPlot(const Plot& plot) {
   const PlotFrame f = plotFrame(plot);
   const Style st(plot);
   draw::Canvas cv(plot.width, plot.height);
-  if (plot.grid) drawGrid(cv, f);
+  if (plot.grid) drawGrid(cv, plot, f);
   plotimpl::drawContent(cv, plot, f);
-  drawAxes(cv, f, st);
+  drawAxes(cv, plot, f, st);
   if (plot.heatMap) drawColorBar(cv, plot, f, st);
   plotimpl::drawLegend(cv, plot, f);
   drawTitles(cv, plot, f, st);

@@ -77,6 +77,11 @@ namespace plotimpl {
 std::string tickLabel(const std::vector<double>& ticks, bool log, double t) {
   return formatTick(t, log ? t : ticks.size() >= 2 ? ticks[1] - ticks[0] : 1.0);
 }
+std::string xTickLabel(const Plot& p, const PlotFrame& f, double t) {
+  if (p.x.categories.empty()) return tickLabel(f.xTicks, f.logX, t);
+  const long i = std::lround(t);
+  return i >= 0 && size_t(i) < p.x.categories.size() ? p.x.categories[size_t(i)] : std::string();
+}
 }  // namespace plotimpl
 
 }  // namespace inim

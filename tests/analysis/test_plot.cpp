@@ -14,6 +14,7 @@
 #include "analysis/plot.h"
 #include "analysis/plot_test_util.h"
 #include "core/error.h"
+#include "draw/text.h"
 
 namespace fs = std::filesystem;
 using namespace inim;
@@ -230,6 +231,74 @@ TEST(Plot, TickLabelsAndTitlesWhereTheyBelong) {
   EXPECT_NEAR(0.5 * (yy0 + yy1), 0.5 * (f.top + f.bottom), 10.0);
   // Nothing inside the empty plot area but the grid (light grey).
   EXPECT_EQ(darkIn(img, f.left + 1, f.top + 1, f.right - 1, f.bottom - 1, 0.8f), 0);
+}
+
+TEST(Plot, CategoryAxisNamesItsTicksAndTurnsCrowdedNames) {
+  Plot p;
+  p.width = 640, p.height = 420;
+  p.x.categories = {"red", "green", "blue"};
+  p.bars.push_back({"", {0.0, 1.0, 2.0}, {1.0, 2.0, 3.0}});
+  const PlotFrame f = plotFrame(p);
+  EXPECT_EQ(f.xMin, -0.5);
+  EXPECT_EQ(f.xMax, 2.5);
+  ASSERT_EQ(f.xTicks, (std::vector<double>{0.0, 1.0, 2.0}));
+  EXPECT_FALSE(f.xLabelsUp);
+  const Image img = renderPlot(p);
+  const double th = 13.0 * 1.3;
+  for (double t : f.xTicks) {
+    const double x = f.pixelX(t);
+    const double w = draw::measureText(p.x.categories[size_t(t)], {13.0}).width;
+    EXPECT_GT(darkIn(img, x - 0.5 * w, f.bottom + 4, x + 0.5 * w, f.bottom + 4 + th), 10) << t;
+  }
+  // No grid line up from a category's tick (above the lowest bar, between horizontal ones).
+  const double yMid = 0.5 * (f.yTicks[f.yTicks.size() - 2] + f.yTicks.back());
+  EXPECT_EQ(darkIn(img, f.pixelX(0.0) - 2, f.pixelY(yMid) - 2, f.pixelX(0.0) + 2, f.pixelY(yMid) + 2, 0.99f), 0);
+
+  // Many long names do not fit side by side: turned to read upwards, each in a column under
+  // its tick ending at the axis, the plot area shorter for them.
+  Plot q = p;
+  q.x.categories.clear();
+  q.bars[0].x.clear(), q.bars[0].y.clear();
+  for (int i = 0; i < 24; ++i) {
+    std::string name = "patch number ";
+    q.x.categories.push_back(name += std::to_string(i));
+    q.bars[0].x.push_back(i), q.bars[0].y.push_back(1.0);
+  }
+  const PlotFrame g = plotFrame(q);
+  EXPECT_TRUE(g.xLabelsUp);
+  EXPECT_LT(g.bottom, f.bottom - 40);
+  const Image qi = renderPlot(q);
+  const double len = draw::measureText(q.x.categories[5], {13.0}).width;
+  const double x5 = g.pixelX(5.0), x55 = g.pixelX(5.5);
+  EXPECT_GT(darkIn(qi, x5 - 6, g.bottom + 4, x5 + 6, g.bottom + 4 + 0.3 * len), 10);
+  EXPECT_GT(darkIn(qi, x5 - 6, g.bottom + 4 + 0.7 * len, x5 + 6, g.bottom + 4 + len), 10);
+  EXPECT_EQ(darkIn(qi, x55 - 1, g.bottom + 4, x55 + 1, g.bottom + 4 + len), 0);
+
+  // Categories on the y axis or on a log x axis are refused.
+  Plot y;
+  y.y.categories = {"a"};
+  EXPECT_THROW(plotFrame(y), InputError);
+  Plot lg;
+  lg.x.categories = {"a"};
+  lg.x.log = true;
+  EXPECT_THROW(plotFrame(lg), InputError);
+}
+
+TEST(Plot, LongTitleStaysInsideTheImage) {
+  Plot p;
+  p.width = 420, p.height = 300;
+  p.y.min = 1000.0, p.y.max = 100000.0;  // wide tick labels: the plot area's centre is right of the image's
+  p.y.title = "counts";
+  p.title = "A long title, nearly as wide as the image";
+  const double margin = std::round(0.7 * p.fontSize);
+  const double w = draw::measureText(p.title, {std::round(1.25 * p.fontSize), true}).width;
+  const PlotFrame f = plotFrame(p);
+  // It fits in the image, but not centred over the plot area.
+  ASSERT_LT(w, p.width - 2 * margin);
+  ASSERT_GT(0.5 * (f.left + f.right) + 0.5 * w, p.width - margin);
+  const Image img = renderPlot(p);
+  EXPECT_GT(darkIn(img, 0, 0, p.width, f.top - 4), 100);
+  EXPECT_EQ(darkIn(img, p.width - margin + 2, 0, p.width, f.top - 4), 0);
 }
 
 TEST(Plot, RenderingIsDeterministicAcrossThreads) {

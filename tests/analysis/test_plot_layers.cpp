@@ -166,6 +166,40 @@ TEST(PlotLayers, TextAnnotationsAtTheirDataPosition) {
   EXPECT_EQ(all, darkIn(img, a.x, a.y, a.x + 40, a.y + 18) + darkIn(img, b.x - 20, b.y - 18, b.x, b.y));
 }
 
+TEST(PlotLayers, MarkerShapes) {
+  Plot p = axes(0.0, 5.0, 0.0, 2.0);
+  p.legend = false;
+  const Vec3 c(0.1f, 0.2f, 0.7f);
+  const MarkerShape shapes[4] = {MarkerShape::Disc, MarkerShape::Circle, MarkerShape::Triangle, MarkerShape::Cross};
+  for (int i = 0; i < 4; ++i) {
+    PlotSeries s{"", {double(i + 1)}, {1.0}};
+    s.line = false, s.color = c, s.markerRadius = 6.0, s.marker = shapes[i];
+    p.series.push_back(s);
+  }
+  const Image img = renderPlot(p);
+  const PlotFrame f = plotFrame(p);
+  auto at = [&](int i, double dx, double dy) {
+    const glm::dvec2 q = f.toPixel(i + 1.0, 1.0);
+    return ::at(img, q.x + dx, q.y + dy);
+  };
+  const Vec3 white(1.0f);
+  // Disc: filled to its radius.
+  expectColour(at(0, 0, 0), c, kLevel, "disc centre");
+  expectColour(at(0, 0, -9), white, 0.0f, "beyond the disc");
+  // Circle: open, a ring just outside the radius.
+  expectColour(at(1, 0, 0), white, 0.0f, "circle centre");
+  expectColour(at(1, 0, -7.2), c, 0.1f, "circle ring");
+  // Triangle, point up: filled at the centre and towards the apex, empty beside the apex.
+  expectColour(at(2, 0, 0), c, kLevel, "triangle centre");
+  expectColour(at(2, 0, -6), c, 0.1f, "towards the apex");
+  expectColour(at(2, 5, -6), white, 0.0f, "beside the apex");
+  // Cross: ink along the diagonals, none straight up or across.
+  expectColour(at(3, 0, 0), c, 0.1f, "cross centre");
+  expectColour(at(3, 4.5, 4.5), c, 0.15f, "cross arm");
+  expectColour(at(3, 0, -5), white, 0.0f, "above the cross centre");
+  expectColour(at(3, 5, 0), white, 0.0f, "right of the cross centre");
+}
+
 TEST(PlotLayers, ColourMapsRiseInLightness) {
   for (ColorMap m : {ColorMap::Viridis, ColorMap::Grey}) {
     double prev = -1.0;
