@@ -309,6 +309,14 @@ TEST(CliEia, BadCalibrationLeavesNoOutput) {
   expectBadInput(args + " --run " + runFile, {path("nowhere.cube"), "calibration (" + runFile + ")"}, {out, png});
 }
 
+// The measured-OLED display variant loads and reports its assumptions.
+TEST(CliDisplay, MeasuredOledVariantLoads) {
+  Result r = run("display info " + data("optics/displays/paper-prototype-measured-oled.json"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("measured-OLED primaries"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("iPhone 13 Pro"), std::string::npos) << r.output;
+}
+
 // The triads of a synthesized EIA, written as SDF and formed again on the detector, give the
 // EIA back; Zemax SDF files with a wrong header or size are rejected.
 TEST(CliTriads, ExportFormRoundTripAndBadSdf) {
