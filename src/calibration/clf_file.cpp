@@ -63,10 +63,25 @@ struct ClfReader {
     if (value != wanted) throw InputError(path, where(node, name), value, wanted);
   }
 
+  // The node's one Array child. Any other child but a Description is refused: an IndexMap
+  // (CLF 2) would remap the input domain, and a second Array would be ignored.
+  pugi::xml_node arrayChild(const pugi::xml_node& owner) const {
+    pugi::xml_node found;
+    for (const pugi::xml_node& child : owner.children()) {
+      if (child.type() != pugi::node_element) continue;
+      const std::string name = child.name();
+      if (name == "Description") continue;
+      if (name != "Array" || found)
+        throw InputError(path, where(child, ""), name, "one Array (and Descriptions) inside " + std::string(owner.name()));
+      found = child;
+    }
+    if (!found) throw InputError(path, where(owner, ""), "no Array", "an Array child");
+    return found;
+  }
+
   // The numbers in an Array whose dim must equal `dims`.
   std::vector<double> array(const pugi::xml_node& owner, const std::string& dims, size_t count) const {
-    const pugi::xml_node node = owner.child("Array");
-    if (!node) throw InputError(path, where(owner, ""), "no Array", "an Array child");
+    const pugi::xml_node node = arrayChild(owner);
     requireAttribute(node, "dim", dims);
     const std::vector<std::string_view> tokens = splitWhitespace(node.child_value());
     if (tokens.size() != count)
@@ -95,8 +110,7 @@ struct ClfReader {
     requireAttribute(node, "interpolation", "tetrahedral");
     requireAttribute(node, "inBitDepth", "32f");
     requireAttribute(node, "outBitDepth", "32f");
-    const pugi::xml_node arrayNode = node.child("Array");
-    if (!arrayNode) throw InputError(path, where(node, ""), "no Array", "an Array child");
+    const pugi::xml_node arrayNode = arrayChild(node);
     const std::vector<std::string_view> dims = splitWhitespace(arrayNode.attribute("dim").as_string());
     double n = 0.0;
     if (dims.size() != 4 || !parseNumber(dims[0], n) || n != std::floor(n) || n < 2 || n > 256)

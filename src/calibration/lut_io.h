@@ -27,7 +27,8 @@ struct ClfProcess {
 // "N N N 3" with BLUE changing fastest (the CLF order, the reverse of .cube's).
 void writeClf(const std::string& path, const ClfProcess& process, const std::string& name);
 // Checks the root, version, bit depths, interpolation, Array dimensions, value counts and
-// finiteness.
+// finiteness; refuses any node but Matrix and LUT3D (Range, LUT1D, ...) and any child of theirs
+// but one Array (an IndexMap, which would remap the [0,1] domain, or a second Array).
 ClfProcess readClf(const std::string& path);
 
 }  // namespace inim

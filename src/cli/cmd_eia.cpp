@@ -17,7 +17,7 @@ namespace {
 
 struct EiaOpts {
   std::string scene, field, fieldColors, colorsEncoding = "srgb", out, png, sdf, run, preview;
-  std::string triads, exposure, gamut, whiteBalance;
+  std::string triads, exposure, gamut, whiteBalance, calibration;
   DisplayArgs display;
   PlacementArgs place;
   RealLensArgs realLens;
@@ -25,7 +25,7 @@ struct EiaOpts {
   int spp = 1;
   bool aovs = false, quiet = false;
   RunOptions runOpts;
-  CLI::Option *sceneOpt, *fieldOpt, *colorsOpt, *triOpt, *vcpOpt, *sppOpt, *expOpt, *gamutOpt, *wbOpt;
+  CLI::Option *sceneOpt, *fieldOpt, *colorsOpt, *triOpt, *vcpOpt, *sppOpt, *expOpt, *gamutOpt, *wbOpt, *calOpt;
 };
 
 // Settings: defaults < run file < command line. The field's own default placement (a trained
@@ -52,6 +52,8 @@ EiaRunSettings eiaRunSettings(const EiaOpts& o, const RunFile& run) {
   }
   s.gamut = parseGamut(optionOrRun(o.gamutOpt, o.gamut, run.gamut, std::string("clip")));
   s.whiteBalanceD65 = parseWhiteBalanceD65(optionOrRun(o.wbOpt, o.whiteBalance, run.whiteBalance, std::string("none")));
+  e.calibrationPath = optionOrRun(o.calOpt, o.calibration, run.calibration, std::string());
+  if (!o.calOpt->count() && run.calibration) e.calibrationKey = "calibration (" + run.file + ")";
   s.aovs = o.aovs;
   s.progress = !o.quiet;
   e.displayPath = optionOrRun(o.display.displayOpt, o.display.display, run.display, std::string());
@@ -98,6 +100,9 @@ void addEiaCommand(CLI::App& app) {
   o->gamutOpt = cmd->add_option("--gamut", o->gamut, "Out-of-gamut mapping: clip (per channel, default) or desaturate");
   o->wbOpt = cmd->add_option("--white-balance", o->whiteBalance,
                              "none (colorimetric, default) or d65 (gains so that D65 drives 1,1,1)");
+  o->calOpt = cmd->add_option("--calibration", o->calibration,
+                              "Panel calibration applied to the drive values after the gamut mapping: a 3D LUT "
+                              "(.cube or .clf, drive -> drive, e.g. from `inim calibrate`; default: none)");
   addRealLensOptions(cmd, o->realLens,
                      "Query the scene along the real-lens display rays (traced through the refracting MLA at the "
                      "physical lens centres) instead of the pinhole rays");

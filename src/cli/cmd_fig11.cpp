@@ -37,6 +37,9 @@ void addFig11Command(CLI::App& app) {
   cmd->add_option("--eia-spp", o->s.eiaSpp, "Field samples per display ray for the EIA")->capture_default_str();
   cmd->add_option("--angle", o->s.angleDeg, "Viewing angle of the four side views, degrees")->capture_default_str();
   cmd->add_option("--distance-mm", o->s.distanceMm, "Camera distance (default: the camera description's)");
+  cmd->add_option("--calibration", o->s.calibrationPath,
+                  "Panel calibration applied to the EIA's drive values, as `inim eia --calibration` (.cube or "
+                  ".clf; default: none)");
   addPlacementOptions(cmd, o->place);
   addRunOptions(cmd, o->run, [o] {
     o->s.mla = o->mla == "ideal" ? MlaKind::Ideal : MlaKind::Real;
@@ -45,6 +48,7 @@ void addFig11Command(CLI::App& app) {
     Fig11Observer observer;
     observer.eiaDone = [](const Fig11Result& r) {
       std::printf("EIA:         %d x %d px from %s, %.2f s\n", r.eiaWidth, r.eiaHeight, r.fieldPath.c_str(), r.eiaSeconds);
+      std::printf("calibration: %s\n", r.calibration.c_str());
       std::printf("%-8s %-14s %9s %7s %9s %9s %8s %8s\n", "view", "pose", "PSNR dB", "SSIM", "dE mean", "dE p95",
                   "rec s", "ref s");
     };

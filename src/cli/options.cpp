@@ -88,6 +88,7 @@ std::string flagForSetting(const std::string& key) {
       {"gap_mm", "--gap-mm"}, {"vcp_mm", "--vcp-mm"},
       {"scale", "--scale"}, {"rotate_deg", "--rotate-deg"}, {"translate_mm", "--translate-mm"},
       {"exposure", "--exposure"}, {"gamut", "--gamut"}, {"white_balance", "--white-balance"},
+      {"calibration", "--calibration"},
       {"triad_wavelengths", "--triad-wavelengths"}, {"real_lens_ray", "--real-lens-ray"},
       {"wavelength_nm", "--wavelength-nm"},
       {"camera", "--camera"}, {"camera_model", "--camera-model"}, {"distance_mm", "--distance-mm"},

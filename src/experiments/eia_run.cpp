@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <future>
 
+#include "calibration/calibration_file.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/output_file.h"
@@ -120,6 +121,12 @@ EiaRunResult runEia(const EiaRunSettings& s, const std::function<void(const EiaR
   SynthesisSettings synthesis = s.synthesis;
   r.placement = synthesis.placement = resolvePlacement(s.placement ? s.placement : field.placement, s.placementOverride);
   r.png = checkOutputs(s);
+  if (!s.calibrationPath.empty()) {
+    synthesis.correction = loadCalibration(s.calibrationPath, s.calibrationKey);
+    r.calibration = describeCalibration(s.calibrationPath, *synthesis.correction);
+  } else if (synthesis.correction) {
+    r.calibration = synthesis.correction->name() + " (given in the settings)";
+  }
   r.display = loadDisplay(displayPathOrDefault(s.displayPath));
   r.layout = applyLayoutOverride(r.display, s.layout);
   RealLensRayStats realStats;
@@ -168,6 +175,7 @@ std::string summaryText(const EiaRunResult& r, const EiaRunSettings& s) {
     if (line.rfind("warning:", 0) != 0) t += line;
     pos = nl == std::string::npos ? summary.size() : nl + 1;
   }
+  t += "calibration: " + r.calibration + "\n";
   const Image& eia = r.synthesis.eia;
   t += format("wrote:       %s (%d x %d, %s), %s", s.out.c_str(), eia.width, eia.height,
               s.synthesis.aovs ? "R G B A Z" : "R G B", r.png.c_str());

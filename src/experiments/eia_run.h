@@ -31,6 +31,10 @@ struct EiaRunSettings {
   std::optional<Placement> placement;   // a run file's; absent: the field's own
   PlacementOverride placementOverride;  // given one by one, over that
   SynthesisSettings synthesis;          // its placement and display rays are set by the run
+  // A calibration file (.cube or .clf, calibration/calibration_file.h) loaded with the other
+  // inputs and set as synthesis.correction; "": synthesis.correction as given (normally none).
+  std::string calibrationPath;
+  std::string calibrationKey = "calibration";  // the setting an unusable calibrationPath is reported as
   std::optional<RealLensRayOptions> realLens;  // query along the real-lens display rays
   std::string triadWavelengths = "panel";
   std::string out, png, preview, sdf;   // EXR; PNG ("": beside it); optional preview and SDF
@@ -43,6 +47,7 @@ struct EiaRunResult {
   FieldKind fieldKind = FieldKind::AnalyticScene;
   Placement placement;
   std::string realLensSummary;  // with real-lens rays: how they were traced
+  std::string calibration = "none";  // the calibration applied (describeCalibration), or "none"
   std::string png;
   TriadWavelengths triadWavelengths;
   double loadSeconds = 0, writeSeconds = 0;
@@ -63,8 +68,8 @@ bool parseWhiteBalanceD65(const std::string& text);
 EiaRunResult runEia(const EiaRunSettings& s, const std::function<void(const EiaRunResult&)>& loaded = {});
 
 // What `inim eia` prints: the setup (display, field, placement, real-lens rays) once loaded,
-// and after the run the synthesis summary (its warnings left out: they go to stderr) and the
-// files written, each line ending in a newline.
+// and after the run the synthesis summary (its warnings left out: they go to stderr), the
+// calibration applied and the files written, each line ending in a newline.
 std::string setupText(const EiaRunResult& r, double vcpMm);
 std::string summaryText(const EiaRunResult& r, const EiaRunSettings& s);
 

@@ -8,6 +8,7 @@
 
 #include "analysis/contact_sheet.h"
 #include "analysis/plot.h"
+#include "calibration/calibration_file.h"
 #include "camera/camera_config.h"
 #include "core/error.h"
 #include "core/format.h"
@@ -53,6 +54,7 @@ struct Inputs {
   Display display;
   EiLayout layout;
   LoadedField field;
+  std::shared_ptr<const ColourModel> calibration;  // null: none
   CameraDescription camera;
   Placement placement;
   Transform fieldToDisplay;
@@ -64,6 +66,7 @@ Inputs loadInputs(const Fig11Settings& s) {
   in.display = loadDisplay(displayPathOrDefault(s.displayPath));
   in.layout = computeLayout(in.display);
   in.field = loadField(s.fieldPath.empty() ? defaultScenePath() : s.fieldPath, "field");
+  if (!s.calibrationPath.empty()) in.calibration = loadCalibration(s.calibrationPath);
   in.camera = loadCameraDescription(s.camera);
   in.placement = resolvePlacement(in.field.placement, s.placement);
   in.fieldToDisplay = in.placement.toDisplay();
@@ -184,6 +187,7 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   Inputs in = loadInputs(s);
   Fig11Result result;
   result.fieldPath = in.field.path;
+  if (in.calibration) result.calibration = describeCalibration(s.calibrationPath, *in.calibration);
 
   // 1. The EIA, as `inim eia` makes it.
   SynthesisSettings ss;
@@ -191,6 +195,7 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   ss.spp = s.eiaSpp;
   ss.seed = s.seed;
   ss.autoExposure = true;
+  ss.correction = in.calibration;
   SynthesisResult eia = synthesizeEia(in.layout, in.display.panel, *in.field.field, ss);
   result.eiaWidth = eia.eia.width, result.eiaHeight = eia.eia.height, result.eiaSeconds = eia.stats.seconds;
   if (observer.eiaDone) observer.eiaDone(result);
@@ -209,8 +214,10 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   ContactSheetOptions cso;
   cso.heading = "inim fig11: " + fs::path(in.field.path).filename().string() + " on " + in.display.name + ", " +
                 in.camera.name + " at " + std::to_string(int(std::lround(in.distanceMm))) + " mm, MLA " +
-                mlaKindName(s.mla);
+                mlaKindName(s.mla) + ", calibration " +
+                (in.calibration ? fs::path(s.calibrationPath).filename().string() : std::string("none"));
   writeImage(composeFig11Sheet(run.sheet, cso), run.out("contact_sheet.png"));
+  run.metrics["calibration"] = s.calibrationPath.empty() ? std::string("none") : s.calibrationPath;
   writeJson(run.metrics, run.out("metrics.json"));
   writeCsv(run.out("metrics.csv"), metricsCsvHeader("view"), run.rows);
   run.outputs.commit();

@@ -5,7 +5,9 @@
 // paper's gimbal does), and writes into the output folder: eia.exr/png, view_POSE and
 // reference_POSE (.exr linear camera RGB x exposure, .png sRGB), a contact sheet laid out like
 // the figure, and metrics.json / metrics.csv (PSNR, SSIM, CIEDE2000 mean and 95th percentile
-// over the pixels that see the display; both images at one exposure, compared as sRGB).
+// over the pixels that see the display; both images at one exposure, compared as sRGB). With a
+// calibration file the EIA's drive values go through it (as `inim eia --calibration`);
+// metrics.json's "calibration" and the contact-sheet heading name it ("none" without).
 // All outputs are written together at the end, or none.
 //
 //   Fig11Settings s;
@@ -28,6 +30,7 @@ struct Fig11Settings {
   std::string displayPath;                     // "": the paper's prototype
   std::string fieldPath;                       // "": scenes/paper-fig7.json; or a trained model (.inimrf)
   std::string camera = "alvium-1800-u-500c";   // a name in optics/cameras or a file
+  std::string calibrationPath;                 // .cube or .clf applied to the EIA's drive values; "": none
   MlaKind mla = MlaKind::Real;                 // of the reconstruction
   PlacementOverride placement;                 // over the field's own placement
   int width = 648;        // view width in pixels (the sensor's pitch scales; 2592 = full)
@@ -51,6 +54,7 @@ struct Fig11View {
 
 struct Fig11Result {
   std::string fieldPath;
+  std::string calibration = "none";  // the calibration applied (describeCalibration), or "none"
   int eiaWidth = 0, eiaHeight = 0;
   double eiaSeconds = 0;
   std::vector<Fig11View> views;
@@ -62,8 +66,8 @@ struct Fig11Observer {
   std::function<void(const Fig11View&)> viewDone;
 };
 
-// InputError naming the setting (spp, reference_spp, eia_spp, width, angle_deg, field, ...)
-// before any work or output.
+// InputError naming the setting (spp, reference_spp, eia_spp, width, angle_deg, field,
+// calibration, ...) before any work or output.
 Fig11Result runFig11(const Fig11Settings& settings, const Fig11Observer& observer = {});
 
 }  // namespace inim

@@ -120,6 +120,7 @@ RunFile loadRunFile(const std::string& path) {
   }
   if (o.has("display")) r.display = o.path("display");
   if (o.has("scene")) r.scene = o.path("scene");
+  if (o.has("calibration")) r.calibration = o.path("calibration");
   if (o.has("vcp_mm")) {
     double v = o.number("vcp_mm");
     if (!std::isfinite(v)) o.fail("vcp_mm", formatNumber(v), "a finite distance in mm");

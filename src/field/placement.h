@@ -20,7 +20,8 @@
 //     "display": "file.json", "scene": "file.json",      (paths relative to the run file)
 //     "vcp_mm": 100, "layout": "parallel", "viewing_distance_mm": 350, "spp": 4,
 //     "exposure": 1 | "auto", "gamut": "clip" | "desaturate", "white_balance": "none" | "d65",
-//     "triad_wavelengths": "panel" | "paper" | [656, 566, 471], "seed": 1
+//     "triad_wavelengths": "panel" | "paper" | [656, 566, 471], "seed": 1,
+//     "calibration": "file.cube" | "file.clf"            (relative to the run file)
 //   }
 #include <cstdint>
 #include <optional>
@@ -61,7 +62,7 @@ Placement resolvePlacement(const std::optional<Placement>& base, const Placement
 struct RunFile {
   std::string file;
   std::optional<Placement> placement;
-  std::optional<std::string> display, scene;  // resolved against the run file's folder
+  std::optional<std::string> display, scene, calibration;  // resolved against the run file's folder
   std::optional<double> vcpMm, viewingDistanceMm;
   std::optional<std::string> layout, exposure, gamut, whiteBalance, triadWavelengths;
   std::optional<int> spp;

@@ -25,6 +25,17 @@ inline std::string smallDisplayJson(int K, int R, int n, double gap = 3.0, doubl
   return fixtures::smallDisplayJson({K, R, n, gap, pitch, panelW, panelH});
 }
 
+// A 2-node .cube calibration LUT that multiplies every drive value by `k` (affine, so
+// tetrahedral interpolation is exact at any input), written to `file`.
+inline std::string writeScalingCube(const std::string& file, double k) {
+  std::string text = "TITLE \"x" + std::to_string(k) + "\"\nLUT_3D_SIZE 2\n";
+  for (int i = 0; i < 8; ++i)
+    text += std::to_string(k * (i & 1)) + " " + std::to_string(k * (i >> 1 & 1)) + " " +
+            std::to_string(k * (i >> 2 & 1)) + "\n";
+  writeText(file, text);
+  return file;
+}
+
 // Runs `args` with `runner` (runInim, or a test's own binary) and expects a bad-input failure.
 template <class Runner>
 void expectBadInputWith(Runner runner, const std::string& args, std::initializer_list<std::string> needles,

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cmath>
 #include <cstdlib>
@@ -251,6 +252,69 @@ TEST(CliEia, BadInputLeavesNoOutput) {
   // A scene file that does not exist.
   expectBadInput("eia --display " + smallDisplay() + " --scene " + path("nope.json") + outs, {"nope.json"},
                  {out, png, sdf, pv});
+}
+
+// --calibration (or a run file's "calibration", relative to the run file) applies the LUT to
+// the drive values: an identity LUT leaves the EIA as it is, a halving one halves it; the
+// summary names the file.
+TEST(CliEia, CalibrationAppliesTheLut) {
+  const std::string args = "eia --display " + smallDisplay() + " --scene " + data("scenes/paper-fig7.json") +
+                           " --exposure 0.5 --out ";
+  const std::string plain = path("cal_plain.exr"), same = path("cal_identity.exr"), half = path("cal_half.exr");
+  Result r = run(args + plain);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("calibration: none"), std::string::npos) << r.output;
+  const std::string identity = writeScalingCube(path("identity.cube"), 1.0);
+  r = run(args + same + " --calibration " + identity);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("calibration: " + identity + " (3D LUT, 2 nodes per axis"), std::string::npos) << r.output;
+  fs::create_directories(path("luts"));
+  writeScalingCube(path("luts/half.cube"), 0.5);
+  const std::string runFile = path("run_calibrated.json");
+  writeText(runFile, R"({"calibration": "luts/half.cube"})");
+  r = run(args + half + " --run " + runFile);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("calibration: " + path("luts/half.cube")), std::string::npos) << r.output;
+  const Image a = readImage(plain), b = readImage(same), c = readImage(half);
+  ASSERT_EQ(a.data.size(), b.data.size());
+  ASSERT_EQ(a.data.size(), c.data.size());
+  EXPECT_TRUE(a.data == b.data);
+  double worst = 0.0, brightest = 0.0;
+  for (size_t i = 0; i < a.data.size(); ++i) {
+    worst = std::max(worst, std::abs(double(c.data[i]) - 0.5 * double(a.data[i])));
+    brightest = std::max(brightest, double(a.data[i]));
+  }
+  EXPECT_LE(worst, 1e-6);
+  EXPECT_GT(brightest, 0.2);
+}
+
+TEST(CliEia, BadCalibrationLeavesNoOutput) {
+  const std::string out = path("badcal.exr"), png = path("badcal.png");
+  const std::string args = "eia --display " + smallDisplay() + " --scene " + data("scenes/test/point-sphere.json") +
+                           " --out " + out;
+  expectBadInput(args + " --calibration " + path("lut.3dl"), {"--calibration", "lut.3dl", ".cube or .clf"}, {out, png});
+  expectBadInput(args + " --calibration " + path("missing.clf"), {"--calibration", "missing.clf", "readable"},
+                 {out, png});
+  const std::string shortCube = path("short.cube");
+  writeText(shortCube, "LUT_3D_SIZE 2\n0 0 0\n1 0 0\n");
+  expectBadInput(args + " --calibration " + shortCube, {shortCube, "LUT_3D_SIZE", "8 table lines (found 2)"},
+                 {out, png});
+  const std::string inf = path("inf.clf");
+  writeText(inf, R"(<ProcessList compCLFversion="3"><LUT3D interpolation="tetrahedral" inBitDepth="32f" outBitDepth="32f">
+<Array dim="2 2 2 3">0 0 0 0 0 1 0 1 0 0 1 1 1 0 0 1 0 1 1 1 0 1 1 inf</Array></LUT3D></ProcessList>)");
+  expectBadInput(args + " --calibration " + inf, {inf, "inf", "finite"}, {out, png});
+  // A run file's calibration is named with the run file.
+  const std::string runFile = path("run_missing_cal.json");
+  writeText(runFile, R"({"calibration": "nowhere.cube"})");
+  expectBadInput(args + " --run " + runFile, {path("nowhere.cube"), "calibration (" + runFile + ")"}, {out, png});
+}
+
+// The measured-OLED display variant loads and reports its assumptions.
+TEST(CliDisplay, MeasuredOledVariantLoads) {
+  Result r = run("display info " + data("optics/displays/paper-prototype-measured-oled.json"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("measured-OLED primaries"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("iPhone 13 Pro"), std::string::npos) << r.output;
 }
 
 // The triads of a synthesized EIA, written as SDF and formed again on the detector, give the

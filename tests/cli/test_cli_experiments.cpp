@@ -3,6 +3,7 @@
 // a quick study writes its report and data; bad settings name their flags.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "cli/cli_helpers.h"
+#include "core/image.h"
 #include "scratch_dir.h"
 
 namespace fs = std::filesystem;
@@ -47,6 +49,24 @@ TEST(CliFig11, SmallRunWritesViewsAndMetricsInRange) {
   EXPECT_EQ(m["centre"]["rot_h_deg"].get<double>(), 0.0);
   EXPECT_EQ(m["left"]["rot_h_deg"].get<double>(), -7.0);
   EXPECT_EQ(m["top"]["rot_v_deg"].get<double>(), 7.0);
+  EXPECT_EQ(m["calibration"], "none");
+}
+
+// With a calibration that halves the drive, the EIA's brightest drive is 0.5 where auto
+// exposure puts full drive (1) without one; metrics.json and the printout name the file.
+TEST(CliFig11, CalibrationReachesTheEiaAndIsRecorded) {
+  const std::string out = path("fig11_cal"), lut = writeScalingCube(path("half.cube"), 0.5);
+  const CliResult r =
+      runInim("fig11 --out " + out + " --width 48 --spp 1 --reference-spp 1 --eia-spp 1 --calibration " + lut);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("calibration: " + lut), std::string::npos) << r.output;
+  std::ifstream in(fs::path(out) / "metrics.json");
+  const nlohmann::json m = nlohmann::json::parse(in);
+  EXPECT_EQ(m["calibration"], lut);
+  const inim::Image eia = inim::readImage((fs::path(out) / "eia.exr").string());
+  float brightest = 0.0f;
+  for (float v : eia.data) brightest = std::max(brightest, v);
+  EXPECT_NEAR(brightest, 0.5f, 1e-6f);
 }
 
 TEST(CliFig11, BadSettingsNameTheirFlags) {
@@ -56,6 +76,14 @@ TEST(CliFig11, BadSettingsNameTheirFlags) {
   expectBadInputWith(runInim, "fig11 --out " + out + " --width 0", {"--width"}, {out + "/metrics.json"});
   expectBadInputWith(runInim, "fig11 --out " + out + " --angle 75", {"--angle", "75"}, {out + "/metrics.json"});
   expectBadInputWith(runInim, "fig11 --out " + out + " --field " + path("scene.txt"), {"--field", "scene.txt"},
+                     {out + "/metrics.json"});
+  expectBadInputWith(runInim, "fig11 --out " + out + " --calibration " + path("lut.png"), {"--calibration", "lut.png"},
+                     {out + "/metrics.json"});
+  expectBadInputWith(runInim, "fig11 --out " + out + " --calibration " + path("missing.cube"),
+                     {"--calibration", "missing.cube", "readable"}, {out + "/metrics.json"});
+  const std::string nan = path("nan.cube");
+  writeText(nan, "LUT_3D_SIZE 2\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 nan 1\n1 1 1\n");
+  expectBadInputWith(runInim, "fig11 --out " + out + " --calibration " + nan, {nan, "line 8", "nan", "finite"},
                      {out + "/metrics.json"});
 }
 

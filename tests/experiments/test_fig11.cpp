@@ -44,5 +44,9 @@ TEST(Fig11, BadSettingsAreNamedBeforeAnyOutput) {
   EXPECT_EQ(keyOf(b), "angle_deg");
   b = s, b.fieldPath = "scene.obj";
   EXPECT_EQ(keyOf(b), "field");
+  b = s, b.calibrationPath = "panel.3dl";
+  EXPECT_EQ(keyOf(b), "calibration");
+  b = s, b.calibrationPath = scratch.path("missing.cube");
+  EXPECT_EQ(keyOf(b), "calibration");
   EXPECT_FALSE(std::filesystem::exists(s.outDir));
 }

@@ -84,7 +84,8 @@ TEST(Orthoscopic, RunFileReadsPlacementAndSettings) {
     std::fputs(R"({"_comment": "x", "placement": {"field_units_per_mm": 0.0075, "rotate_deg": [0, 90, 0],
                   "translate_mm": [1, 2, 3]}, "vcp_mm": 25, "spp": 3, "exposure": "auto",
                   "gamut": "desaturate", "layout": "toed-in", "viewing_distance_mm": 400,
-                  "triad_wavelengths": [656, 566, 471], "seed": 9, "scene": "s.json"})",
+                  "triad_wavelengths": [656, 566, 471], "seed": 9, "scene": "s.json",
+                  "calibration": "calibration/panel.cube"})",
                fp);
     std::fclose(fp);
   }
@@ -100,6 +101,7 @@ TEST(Orthoscopic, RunFileReadsPlacementAndSettings) {
   EXPECT_EQ(*r.seed, 9u);
   EXPECT_EQ(*r.triadWavelengths, "656,566,471");
   EXPECT_EQ(std::filesystem::path(*r.scene).parent_path(), std::filesystem::path(run).parent_path());
+  EXPECT_EQ(std::filesystem::path(*r.calibration), std::filesystem::path(run).parent_path() / "calibration/panel.cube");
 
   std::FILE* fp = std::fopen(run.c_str(), "w");
   std::fputs(R"({"vcp": 25})", fp);
