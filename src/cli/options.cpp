@@ -102,6 +102,9 @@ std::string flagForSetting(const std::string& key) {
       {"resolutions", "--resolutions"}, {"stage_starts", "--stage-starts"}, {"holdout_every", "--holdout-every"},
       {"elevation_deg", "--elevation-deg"}, {"target", "--target"}, {"space", "--space"}, {"de_map", "--de-map"},
       {"eye", "--eye"}, {"look_at", "--look-at"}, {"up", "--up"},
+      {"poses", "--poses"}, {"field_space", "--field-space"}, {"correction", "--correction"},
+      {"grid_levels", "--grid-levels"}, {"holdout", "--holdout"}, {"holdout_out_of_gamut", "--holdout-out-of-gamut"},
+      {"lut_size", "--lut-size"}, {"panel_bits", "--panel-bits"}, {"direct_checks", "--direct-checks"},
   };
   auto it = kFlags.find(key);
   return it == kFlags.end() ? key : it->second;

@@ -87,6 +87,32 @@ TEST(CliFig11, BadSettingsNameTheirFlags) {
                      {out + "/metrics.json"});
 }
 
+TEST(CliCalibrate, SmallRunExportsTheCorrectionThatEiaReads) {
+  const std::string out = path("calibrate");
+  const CliResult r = runInim("calibrate --out " + out +
+                              " --poses centre --width 64 --holdout 20 --holdout-out-of-gamut 5 --lut-size 9"
+                              " --direct-checks 0");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("hold-out in gamut"), std::string::npos) << r.output;
+  for (const char* f : {"panel_correction.cube", "panel_correction.clf", "panel_correction.ocio", "calibration.json",
+                        "stages.csv", "verification.csv"})
+    EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+}
+
+TEST(CliCalibrate, BadSettingsNameTheirFlagsAndWriteNothing) {
+  const std::string out = path("calibrate_bad");
+  const std::string json = out + "/calibration.json";
+  expectBadInputWith(runInim, "calibrate --out " + out + " --poses centre,sideways", {"--poses", "sideways"}, {json});
+  expectBadInputWith(runInim, "calibrate --out " + out + " --field-space rec9999", {"--field-space", "rec9999"},
+                     {json});
+  expectBadInputWith(runInim, "calibrate --out " + out + " --angle 95", {"--angle", "95"}, {json});
+  expectBadInputWith(runInim, "calibrate --out " + out + " --correction spline", {"--correction", "spline"}, {json});
+  expectBadInputWith(runInim, "calibrate --out " + out + " --grid-levels 1", {"--grid-levels", "1"}, {json});
+  const std::string csv = path("patches_wrong.csv");
+  writeText(csv, "name,R,G,B\nred,1,0,0\n");
+  expectBadInputWith(runInim, "calibrate --out " + out + " --patches " + csv, {csv, "name,X,Y,Z"}, {json});
+}
+
 TEST(CliStudy, QuickStudyWritesReportAndData) {
   const std::string out = path("flip_onset");
   const CliResult r = runInim("study flip-onset --quick --out " + out);
