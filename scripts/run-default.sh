@@ -24,5 +24,11 @@ echo "run: the scene itself, rendered spectrally from 350 mm -> $OUT/paper-fig7.
 echo "run: the paper's Fig. 11 in software: 5 reconstructed + 5 reference views -> $OUT/fig11/"
 "$INIM" fig11 --out "$OUT/fig11"
 
+echo "run: colour calibration of the display as the camera sees it at 0 and +-7 deg -> $OUT/calibration/"
+"$INIM" calibrate --out "$OUT/calibration"
+
+echo "run: Fig. 11 with that calibration applied to the EIA -> $OUT/fig11-calibrated/"
+"$INIM" fig11 --out "$OUT/fig11-calibrated" --calibration "$OUT/calibration/panel_correction.cube"
+
 echo "run: done; outputs in $OUT"
 ls -l "$OUT"

@@ -344,7 +344,10 @@ CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserv
   j["holdout"] = holdoutJson(r, exported);
   for (const VerificationRow& v : r.uncalibrated) j["verification"].push_back(verificationJson(v));
   for (const CorrectionReport& c : r.corrections) {
-    j["corrections"][c.name]["parameters"] = c.allPoses->parameters();
+    Json parameters = c.allPoses->parameters();
+    if (parameters.contains("table")) parameters["table"] = "(" + std::to_string(s.lutSize) + "^3 nodes: the exported "
+                                                            "panel_correction.cube when this model is chosen)";
+    j["corrections"][c.name]["parameters"] = parameters;
     for (const VerificationRow& v : c.rows) j["verification"].push_back(verificationJson(v));
   }
   for (const VerificationRow& v : exported) j["verification"].push_back(verificationJson(v));
