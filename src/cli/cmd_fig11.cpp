@@ -40,6 +40,13 @@ void addFig11Command(CLI::App& app) {
   cmd->add_option("--calibration", o->s.calibrationPath,
                   "Panel calibration applied to the EIA's drive values, as `inim eia --calibration` (.cube or "
                   ".clf; default: none)");
+  cmd->add_flag("--budget", o->s.budget,
+                "Error budget per view: the ladder from an ideal display to the real one, the full chain with one "
+                "effect removed, the noise floor (budget.json, budget.csv, budget.png)");
+  cmd->add_option("--budget-calibration", o->s.budgetCalibrationPath,
+                  "The budget's calibration rung: a .cube or .clf from inim calibrate (default: --calibration)");
+  cmd->add_option("--budget-rungs", o->s.budgetRungs, "Only these rungs (comma separated; see --help of the budget)")
+      ->delimiter(',');
   addPlacementOptions(cmd, o->place);
   addRunOptions(cmd, o->run, [o] {
     o->s.mla = o->mla == "ideal" ? MlaKind::Ideal : MlaKind::Real;
@@ -62,6 +69,13 @@ void addFig11Command(CLI::App& app) {
       std::printf("%-8s %-14s %9s %7.4f %9.3f %9.3f %8.1f %8.1f\n", v.name.c_str(), v.label.c_str(),
                   formatPsnr(m.psnrDb).c_str(), m.ssim, m.deltaE.mean, m.deltaE.p95, v.reconstructionSeconds,
                   v.referenceSeconds);
+    };
+    observer.budgetDone = [](const PoseBudget& b) {
+      std::printf("  budget %-7s noise floor dE %.3f;", b.pose.c_str(), b.noiseFloor.deltaE.mean);
+      for (const RungResult& r : b.ladder)
+        if (!r.skipped) std::printf(" %s %.3f;", r.rung.name.c_str(), r.metrics.deltaE.mean);
+      std::printf("\n");
+      std::fflush(stdout);
     };
     runFig11(o->s, observer);
     std::printf("wrote:       %s/{eia.exr,eia.png,view_*.exr|png,reference_*.exr|png,contact_sheet.png,metrics.json,"

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "analysis/contact_sheet.h"
@@ -55,6 +56,7 @@ struct Inputs {
   EiLayout layout;
   LoadedField field;
   std::shared_ptr<const ColourModel> calibration;  // null: none
+  std::shared_ptr<const ColourModel> budgetCalibration;  // the budget's calibration rung, when given
   CameraDescription camera;
   Placement placement;
   Transform fieldToDisplay;
@@ -67,6 +69,9 @@ Inputs loadInputs(const Fig11Settings& s) {
   in.layout = computeLayout(in.display);
   in.field = loadField(s.fieldPath.empty() ? defaultScenePath() : s.fieldPath, "field");
   if (!s.calibrationPath.empty()) in.calibration = loadCalibration(s.calibrationPath);
+  if (s.budget && !s.budgetCalibrationPath.empty())
+    in.budgetCalibration = loadCalibration(s.budgetCalibrationPath, "budget_calibration");
+  if (s.budget && !s.budgetRungs.empty()) selectRungs(s.budgetRungs);  // unknown names fail here
   in.camera = loadCameraDescription(s.camera);
   in.placement = resolvePlacement(in.field.placement, s.placement);
   in.fieldToDisplay = in.placement.toDisplay();
@@ -77,6 +82,7 @@ Inputs loadInputs(const Fig11Settings& s) {
 // The reconstruction and the reference of one pose, exposed alike, linear and sRGB.
 struct PoseImages {
   Image recExposed, refExposed, recSrgb, refSrgb;
+  double exposure = 1.0;  // the factor on the reconstruction (display units)
 };
 
 // One exposure for both, in the same units: the EIA maps field luminance Y to drive
@@ -88,6 +94,7 @@ PoseImages exposeAlike(const Image& rec, const Image& ref, double refToCdM2, con
   const Image refCdM2 = scaledImage(ref, refToCdM2);
   const double k = exposureFactor(refCdM2, sensor, Exposure{});
   PoseImages p;
+  p.exposure = k;
   p.recExposed = scaledImage(rec, k);
   p.refExposed = scaledImage(refCdM2, k);
   p.recSrgb = cameraRgbToSrgb(p.recExposed, sensor);
@@ -114,8 +121,10 @@ std::optional<ViewPair>& sheetSlot(Fig11Views& sheet, const std::string& name) {
 // A run: the inputs, the synthesized display and the outputs being collected.
 class Fig11Run {
  public:
-  Fig11Run(const Fig11Settings& s, Inputs& in, const DisplayModel& dm, double refToCdM2)
-      : s_(s), in_(in), dm_(dm), refToCdM2_(refToCdM2), dir_(s.outDir) {}
+  Fig11Run(const Fig11Settings& s, Inputs& in, const DisplayModel& dm, double refToCdM2, const BudgetScene* budget)
+      : s_(s), in_(in), dm_(dm), refToCdM2_(refToCdM2), budget_(budget), dir_(s.outDir) {}
+
+  std::vector<PoseBudget> budgets;
 
   OutputSet outputs;
   Fig11Views sheet;
@@ -159,6 +168,7 @@ class Fig11Run {
     v.metrics = compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference_" + v.name, "view_" + v.name);
     v.hasMetrics = true;
     record(v, img);
+    if (budget_) budgets.push_back(poseBudgetOf(v, *camera, rec.image, img, mask));
     return v;
   }
 
@@ -173,12 +183,50 @@ class Fig11Run {
     sheetSlot(sheet, v.name) = ViewPair{v.label, img.refSrgb, img.recSrgb};
   }
 
+  // The budget's rungs at this pose, against the same reference and a second one (another
+  // seed) for the noise floor; the run's own view is the full chain when it is one.
+  PoseBudget poseBudgetOf(const Fig11View& v, const CameraModel& camera, const Image& rec, const PoseImages& img,
+                          const PixelMask& mask) {
+    ReferenceSettings rs;
+    rs.spp = s_.referenceSpp;
+    rs.seed = s_.seed + 1;
+    rs.progress = false;
+    const Image second = renderReference(*in_.field.field, in_.fieldToDisplay, camera, in_.camera.sensor, rs).image;
+    const Image secondExposed = scaledImage(second, refToCdM2_ * img.exposure);
+    const bool fullChain = !in_.calibration && s_.mla == MlaKind::Real;
+    const auto rungs = s_.budgetRungs.empty() ? budgetLadder() : selectRungs(s_.budgetRungs);
+    std::vector<BudgetRung> ladder, remove;
+    for (const BudgetRung& r : rungs) (r.name[0] == '-' ? remove : ladder).push_back(r);
+    if (s_.budgetRungs.empty()) remove = budgetRemoveOne();
+    PoseBudget b = poseBudget(*budget_, camera, img.refExposed, secondExposed, img.exposure, mask, ladder, remove,
+                              fullChain ? &rec : nullptr);
+    b.pose = v.name;
+    return b;
+  }
+
   const Fig11Settings& s_;
   Inputs& in_;
   const DisplayModel& dm_;
   double refToCdM2_;
+  const BudgetScene* budget_;
   fs::path dir_;
 };
+
+// budget.json, budget.csv and the waterfall budget.png.
+void writeBudget(Fig11Run& run, const Fig11Result& result) {
+  Json j = Json::object();
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> labels;
+  for (const PoseBudget& b : result.budgets) {
+    j[b.pose] = poseBudgetJson(b);
+    for (auto& r : budgetCsvRows(b)) rows.push_back(r);
+    for (const Fig11View& v : result.views)
+      if (v.name == b.pose) labels.push_back(v.label);
+  }
+  writeJson(j, run.out("budget.json"));
+  writeCsv(run.out("budget.csv"), budgetCsvHeader(), rows);
+  writeBudgetPlot(result.budgets, labels, run.out("budget.png"));
+}
 
 }  // namespace
 
@@ -200,15 +248,36 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   result.eiaWidth = eia.eia.width, result.eiaHeight = eia.eia.height, result.eiaSeconds = eia.stats.seconds;
   if (observer.eiaDone) observer.eiaDone(result);
   DisplayModel dm = makeDisplayModel(in.display, in.layout, eia.eia, "(synthesized EIA)", s.mla);
+  // The budget's EIAs: its ladder starts from the uncalibrated one; its calibration rung uses
+  // the run's calibration or the budget's own.
+  std::optional<SynthesisResult> otherEia;
+  BudgetScene scene;
+  if (s.budget) {
+    const auto calibration = in.calibration ? in.calibration : in.budgetCalibration;
+    if (calibration) {
+      ss.correction = in.calibration ? nullptr : calibration;
+      otherEia = synthesizeEia(in.layout, in.display.panel, *in.field.field, ss);
+    }
+    scene = BudgetScene{&in.display, &in.layout, in.calibration ? &otherEia->eia : &eia.eia,
+                        !calibration ? nullptr : (in.calibration ? &eia.eia : &otherEia->eia), &in.camera, {}};
+    scene.view.spp = s.spp;
+    scene.view.seed = s.seed;
+  }
 
   // 2. Five poses: reconstruction and reference through the same camera.
-  Fig11Run run(s, in, dm, eia.stats.exposureUsed * in.display.panel.peakLuminanceCdM2);
+  Fig11Run run(s, in, dm, eia.stats.exposureUsed * in.display.panel.peakLuminanceCdM2, s.budget ? &scene : nullptr);
   writeImage(eia.eia, run.out("eia.exr"));
   writeImage(encodeForPanel(eia.eia, in.display.panel.eotf), run.out("eia.png"));
   for (const PoseSpec& p : kPoses) {
     result.views.push_back(run.renderPose(p));
     if (observer.viewDone) observer.viewDone(result.views.back());
+    if (observer.budgetDone && run.budgets.size() > result.budgets.size()) {
+      result.budgets.push_back(run.budgets.back());
+      observer.budgetDone(result.budgets.back());
+    }
   }
+  result.budgets = run.budgets;
+  if (s.budget) writeBudget(run, result);
 
   // 3. The contact sheet and the metrics; every output lands together.
   ContactSheetOptions cso;

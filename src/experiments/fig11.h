@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "analysis/metrics.h"
+#include "experiments/error_budget.h"
 #include "field/placement.h"
 #include "view/display_model.h"
 #include "view/display_pose.h"
@@ -40,6 +41,11 @@ struct Fig11Settings {
   double angleDeg = 7.0;  // viewing angle of the four side views
   double distanceMm = 0;  // camera distance; 0: the camera description's
   uint64_t seed = 1;
+  // The error budget (experiments/error_budget.h): the ladder from an ideal display to the
+  // real one and the full chain with one effect removed, per pose; budget.json, .csv, .png.
+  bool budget = false;
+  std::string budgetCalibrationPath;     // the "+ calibration" rung's (default: calibrationPath)
+  std::vector<std::string> budgetRungs;  // names of the rungs to run; empty: all
 };
 
 struct Fig11View {
@@ -53,6 +59,7 @@ struct Fig11View {
 };
 
 struct Fig11Result {
+  std::vector<PoseBudget> budgets;    // with settings.budget, per pose with metrics
   std::string fieldPath;
   std::string calibration = "none";  // the calibration applied (describeCalibration), or "none"
   int eiaWidth = 0, eiaHeight = 0;
@@ -64,6 +71,7 @@ struct Fig11Result {
 struct Fig11Observer {
   std::function<void(const Fig11Result&)> eiaDone;
   std::function<void(const Fig11View&)> viewDone;
+  std::function<void(const PoseBudget&)> budgetDone;
 };
 
 // InputError naming the setting (spp, reference_spp, eia_spp, width, angle_deg, field,

@@ -1,0 +1,224 @@
+#include "experiments/error_budget.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "analysis/plot.h"
+#include "colour_chain/chain_response.h"
+#include "colour_chain/patch_sets.h"
+#include "core/error.h"
+#include "core/format.h"
+#include "view/display_model.h"
+#include "view/view_image.h"
+#include "view/view_renderer.h"
+
+namespace inim {
+
+namespace {
+
+BudgetRung rung(std::string name, std::string label, bool sub, bool mla, bool glass, bool colour, bool cal = false) {
+  return BudgetRung{std::move(name), std::move(label), sub, mla, glass, colour, cal};
+}
+
+// Each panel pixel a uniform emitter of its R, G and B: three whole-pixel squares, one per
+// channel (they overlap; each channel is looked up among its own polygons only).
+SubpixelLayout uniformPixelLayout() {
+  SubpixelLayout L;
+  L.type = "custom";
+  L.tileW = L.tileH = 1;
+  L.fillFactor = 1.0;
+  for (int c = 0; c < kNumPrimaries; ++c) L.subpixels.push_back({c, {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}}});
+  return L;
+}
+
+// What the observer sees of the display, in the camera RGB the reference gives an RGB field:
+// XYZ through the inverse of the sensor's fitted camera RGB -> XYZ matrix.
+Image observerAsCamera(const Image& whiteBalancedXyz, const CameraSensor& sensor) {
+  Image out = whiteBalancedXyz;
+  const glm::dmat3 toCamera = glm::inverse(sensor.colorFit().cameraToXyz);
+  const Vec3d white = d65WhiteXyz();
+  const int n = out.numChannels();
+  for (size_t i = 0; i < size_t(out.width) * size_t(out.height); ++i) {
+    float* p = &out.data[i * size_t(n)];
+    const Vec3d rgb = toCamera * (Vec3d(p[0], p[1], p[2]) * white);
+    p[0] = float(rgb.x), p[1] = float(rgb.y), p[2] = float(rgb.z);
+  }
+  return out;
+}
+
+std::string skipReason(const BudgetScene& s, const BudgetRung& r) {
+  if ((r.name == "+cover_glass" || r.name == "-cover_glass") && !s.display->panel.coverGlass)
+    return "the panel has no cover glass";
+  if (r.calibrated && !s.calibratedEia) return "no calibration given (inim fig11 --budget-calibration FILE)";
+  return "";
+}
+
+Image renderRung(const BudgetScene& s, const CameraModel& camera, const BudgetRung& r) {
+  Display d = *s.display;
+  if (!r.subpixels) d.panel.subpixels = uniformPixelLayout();
+  EmitterSettings emitter;
+  emitter.coverGlass = r.coverGlass;
+  const Image& eia = r.calibrated ? *s.calibratedEia : *s.eia;
+  const DisplayModel dm =
+      makeDisplayModel(d, *s.layout, eia, "(EIA)", r.realMla ? MlaKind::Real : MlaKind::Ideal, 0.0, emitter);
+  ViewSettings vs = s.view;
+  vs.progress = false;
+  if (r.colourChain) return renderView(camera, s.camera->sensor, *dm.mla, *dm.panel, dm.area, vs).image;
+  const CameraSensor observer = cieObserverSensor(s.camera->sensor.geometry());
+  return observerAsCamera(renderView(camera, observer, *dm.mla, *dm.panel, dm.area, vs).image, s.camera->sensor);
+}
+
+bool isFullChain(const BudgetRung& r) { return r.subpixels && r.realMla && r.coverGlass && r.colourChain && !r.calibrated; }
+
+}  // namespace
+
+std::vector<BudgetRung> budgetLadder() {
+  return {rung("ideal", "ideal display", false, false, false, false),
+          rung("+subpixels", "+ subpixels", true, false, false, false),
+          rung("+real_mla", "+ real MLA", true, true, false, false),
+          rung("+cover_glass", "+ cover glass", true, true, true, false),
+          rung("+colour_chain", "+ colour chain (full)", true, true, true, true),
+          rung("+calibration", "+ calibration", true, true, true, true, true)};
+}
+
+std::vector<BudgetRung> budgetRemoveOne() {
+  return {rung("-subpixels", "full - subpixels", false, true, true, true),
+          rung("-real_mla", "full - real MLA", true, false, true, true),
+          rung("-cover_glass", "full - cover glass", true, true, false, true),
+          rung("-colour_chain", "full - colour chain", true, true, true, false)};
+}
+
+std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names) {
+  std::vector<BudgetRung> all = budgetLadder(), out;
+  for (const BudgetRung& r : budgetRemoveOne()) all.push_back(r);
+  for (const std::string& n : names) {
+    bool found = false;
+    for (const BudgetRung& r : all)
+      if (r.name == n) out.push_back(r), found = true;
+    if (!found) {
+      std::string valid;
+      for (const BudgetRung& r : all) valid += (valid.empty() ? "" : ", ") + r.name;
+      throw InputError("", "budget_rungs", "\"" + n + "\"", "one of " + valid);
+    }
+  }
+  return out;
+}
+
+PoseBudget poseBudget(const BudgetScene& s, const CameraModel& camera, const Image& reference,
+                      const Image& secondReference, double exposure, const PixelMask& mask,
+                      const std::vector<BudgetRung>& ladder, const std::vector<BudgetRung>& removeOne,
+                      const Image* fullChainView) {
+  const CameraSensor& sensor = s.camera->sensor;
+  const Image refSrgb = cameraRgbToSrgb(reference, sensor);
+  CompareOptions copt;
+  copt.spaceA = copt.spaceB = "srgb";
+  PoseBudget b;
+  b.noiseFloor = compareImages(refSrgb, cameraRgbToSrgb(secondReference, sensor), copt, &mask, "reference",
+                               "reference (another seed)");
+  auto run = [&](const BudgetRung& r) {
+    RungResult out{r, false, "", {}, 0.0, {}};
+    out.note = skipReason(s, r);
+    if (!out.note.empty()) return out.skipped = true, out;
+    const auto t0 = std::chrono::steady_clock::now();
+    const Image view = fullChainView && isFullChain(r) ? *fullChainView : renderRung(s, camera, r);
+    out.srgb = cameraRgbToSrgb(scaledImage(view, exposure), sensor);
+    out.metrics = compareImages(refSrgb, out.srgb, copt, &mask, "reference", r.name);
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+  };
+  for (const BudgetRung& r : ladder) b.ladder.push_back(run(r));
+  for (const BudgetRung& r : removeOne) b.removeOne.push_back(run(r));
+  return b;
+}
+
+namespace {
+
+Json rungJson(const RungResult& r, const RungResult* against) {
+  Json j{{"rung", r.rung.name}, {"label", r.rung.label}, {"skipped", r.skipped}};
+  if (r.skipped) return j["note"] = r.note, j;
+  j["metrics"] = metricsJson(r.metrics);
+  j["seconds"] = r.seconds;
+  if (against && !against->skipped)
+    j["increment"] = {{"psnr_db", r.metrics.psnrDb - against->metrics.psnrDb},
+                      {"ssim", r.metrics.ssim - against->metrics.ssim},
+                      {"de2000_mean", r.metrics.deltaE.mean - against->metrics.deltaE.mean},
+                      {"de2000_p95", r.metrics.deltaE.p95 - against->metrics.deltaE.p95}};
+  return j;
+}
+
+const RungResult* fullChain(const PoseBudget& b) {
+  for (const RungResult& r : b.ladder)
+    if (isFullChain(r.rung)) return &r;
+  return nullptr;
+}
+
+// The rung before r in the ladder that was not skipped.
+const RungResult* previous(const PoseBudget& b, size_t i) {
+  for (size_t k = i; k-- > 0;)
+    if (!b.ladder[k].skipped) return &b.ladder[k];
+  return nullptr;
+}
+
+}  // namespace
+
+Json poseBudgetJson(const PoseBudget& b) {
+  Json j{{"noise_floor", metricsJson(b.noiseFloor)}, {"ladder", Json::array()}, {"remove_one", Json::array()}};
+  for (size_t i = 0; i < b.ladder.size(); ++i) j["ladder"].push_back(rungJson(b.ladder[i], previous(b, i)));
+  for (const RungResult& r : b.removeOne) j["remove_one"].push_back(rungJson(r, fullChain(b)));
+  return j;
+}
+
+std::vector<std::string> budgetCsvHeader() {
+  return {"pose", "kind", "rung", "psnr_db", "ssim", "de2000_mean", "de2000_p95", "d_psnr_db", "d_de2000_mean", "note"};
+}
+
+std::vector<std::vector<std::string>> budgetCsvRows(const PoseBudget& b) {
+  auto f = [](double v) { return formatNumber(v, "%.4f"); };
+  std::vector<std::vector<std::string>> rows;
+  const ImageMetrics& n = b.noiseFloor;
+  rows.push_back({b.pose, "floor", "noise_floor", f(n.psnrDb), f(n.ssim), f(n.deltaE.mean), f(n.deltaE.p95), "", "", ""});
+  auto add = [&](const char* kind, const RungResult& r, const RungResult* against) {
+    if (r.skipped) return rows.push_back({b.pose, kind, r.rung.name, "", "", "", "", "", "", r.note});
+    const ImageMetrics& m = r.metrics;
+    const bool inc = against && !against->skipped;
+    rows.push_back({b.pose, kind, r.rung.name, f(m.psnrDb), f(m.ssim), f(m.deltaE.mean), f(m.deltaE.p95),
+                    inc ? f(m.psnrDb - against->metrics.psnrDb) : "",
+                    inc ? f(m.deltaE.mean - against->metrics.deltaE.mean) : "", ""});
+  };
+  for (size_t i = 0; i < b.ladder.size(); ++i) add("ladder", b.ladder[i], previous(b, i));
+  for (const RungResult& r : b.removeOne) add("remove", r, fullChain(b));
+  return rows;
+}
+
+void writeBudgetPlot(const std::vector<PoseBudget>& budgets, const std::vector<std::string>& labels,
+                     const std::string& path) {
+  if (budgets.empty()) return;
+  Plot p;
+  p.width = 900, p.height = 520;
+  p.title = "Error budget: mean CIEDE2000 against the reference, rung by rung (" + labels[0] + " bars)";
+  p.y.title = "CIEDE2000 mean";
+  const PoseBudget& first = budgets[0];
+  double level = 0.0;
+  for (size_t i = 0; i < first.ladder.size(); ++i) {
+    p.x.categories.push_back(first.ladder[i].rung.label);
+    const RungResult& r = first.ladder[i];
+    if (r.skipped) continue;
+    const double v = r.metrics.deltaE.mean, base = i == 0 ? 0.0 : level;
+    const Vec3 colour = i == 0 ? Vec3(0.55f) : v >= base ? Vec3(0.84f, 0.15f, 0.16f) : Vec3(0.17f, 0.63f, 0.17f);
+    PlotBars bar{"", {double(i)}, {v}, 0.6, base, colour};
+    p.bars.push_back(bar);
+    level = v;
+  }
+  for (size_t k = 1; k < budgets.size(); ++k) {
+    PlotSeries s{labels[k], {}, {}};
+    s.line = false;
+    for (size_t i = 0; i < budgets[k].ladder.size(); ++i)
+      if (!budgets[k].ladder[i].skipped) s.x.push_back(double(i)), s.y.push_back(budgets[k].ladder[i].metrics.deltaE.mean);
+    p.series.push_back(s);
+  }
+  p.hMarkers.push_back({first.noiseFloor.deltaE.mean, "noise floor (" + labels[0] + ")", Vec3(0.3f), 6.0});
+  p.y.min = 0.0;
+  writePlot(p, path);
+}
+
+}  // namespace inim

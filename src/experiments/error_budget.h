@@ -1,0 +1,94 @@
+#pragma once
+// The error budget of a reconstruction (docs/design.md §1.9): a ladder of simulations from an
+// ideal display to the real one, each rung adding one effect, all seen by the same camera from
+// the same pose, exposed alike and compared with the same reference over the same mask.
+//
+//   ideal display     thin ideal lenslets, each panel pixel a uniform emitter of its R, G, B
+//                     (no subpixel pattern), no cover glass, no colour chain (the observer sees
+//                     the panel's XYZ, put into camera RGB as the reference puts an RGB field's)
+//   + subpixels       the panel's subpixel layout and black matrix
+//   + real MLA        the refracting lenslets (aberration, dispersion, Fresnel, crosstalk)
+//   + cover glass     the panel's cover glass
+//   + colour chain    the panel's spectra seen by the camera's sensor: the full chain
+//   + calibration     the same with the panel-side correction of `inim calibrate` on the EIA
+//
+// Effects interact, so the budget also removes one effect at a time from the full chain. The
+// noise floor is the reference against a reference of another seed. A rung that cannot be
+// built (no cover glass to add, no calibration given) is skipped with a note.
+//
+//   BudgetScene scene{display, layout, eia, calibratedEia, camera};
+//   PoseBudget b = poseBudget(scene, *cameraModel, reference, secondReference, exposure, mask, settings);
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/metrics.h"
+#include "camera/camera_config.h"
+#include "core/image.h"
+#include "core/json_config.h"
+#include "core/pixel_mask.h"
+#include "display/display.h"
+#include "display/ei_layout.h"
+#include "view/view_settings.h"
+
+namespace inim {
+
+struct BudgetRung {
+  std::string name;    // "ideal", "+subpixels", ..., "-real_mla"
+  std::string label;   // for tables and plots
+  bool subpixels = false, realMla = false, coverGlass = false, colourChain = false, calibrated = false;
+};
+
+// The ladder, in order, and the full chain with one effect removed.
+std::vector<BudgetRung> budgetLadder();
+std::vector<BudgetRung> budgetRemoveOne();
+// Rung names for options: InputError (key "budget_rungs") listing the valid ones otherwise.
+std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names);
+
+// What every rung of a run shares.
+struct BudgetScene {
+  const Display* display = nullptr;
+  const EiLayout* layout = nullptr;
+  const Image* eia = nullptr;            // uncalibrated drive values
+  const Image* calibratedEia = nullptr;  // null: the calibration rung is skipped
+  const CameraDescription* camera = nullptr;
+  ViewSettings view;
+};
+
+struct RungResult {
+  BudgetRung rung;
+  bool skipped = false;
+  std::string note;          // why it was skipped, or what it stands for
+  ImageMetrics metrics;      // against the reference
+  double seconds = 0.0;
+  Image srgb;                // the rung's view, sRGB (for error maps)
+};
+
+struct PoseBudget {
+  std::string pose;
+  ImageMetrics noiseFloor;   // reference against the reference of another seed
+  std::vector<RungResult> ladder, removeOne;
+};
+
+// The rungs at one pose. `reference`, `secondReference`: linear camera RGB already scaled to
+// the display's units and exposed by `exposure` (fig11's exposeAlike); rung views are
+// multiplied by `exposure`. `rungs`: which ladder rungs to render (all by default).
+// `fullChainView` (optional): the run's own reconstruction of the uncalibrated EIA (linear,
+// unexposed), reused for the full-chain rung instead of rendering it again.
+PoseBudget poseBudget(const BudgetScene& scene, const CameraModel& camera, const Image& reference,
+                      const Image& secondReference, double exposure, const PixelMask& mask,
+                      const std::vector<BudgetRung>& ladder, const std::vector<BudgetRung>& removeOne,
+                      const Image* fullChainView = nullptr);
+
+// budget.json's entry of a pose: noise floor, rungs with metrics and increments (each rung
+// against the one before; each removal against the full chain).
+Json poseBudgetJson(const PoseBudget& b);
+// budget.csv rows: pose, kind (floor, ladder, remove), rung, PSNR, SSIM, dE mean, dE p95, increments.
+std::vector<std::string> budgetCsvHeader();
+std::vector<std::vector<std::string>> budgetCsvRows(const PoseBudget& b);
+// The waterfall: mean CIEDE2000 rung by rung (floating bars from one rung to the next, red up,
+// green down) for the first pose, the other poses' levels as markers; the noise floor marked.
+void writeBudgetPlot(const std::vector<PoseBudget>& budgets, const std::vector<std::string>& poseLabels,
+                     const std::string& path);
+
+}  // namespace inim
