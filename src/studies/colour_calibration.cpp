@@ -14,6 +14,7 @@
 #include "experiments/calibrate_run.h"
 #include "spectral/color.h"
 #include "studies/studies.h"
+#include "studies/study_display.h"
 #include "studies/study_report.h"
 
 namespace inim {
@@ -27,7 +28,8 @@ struct Variant {
 };
 
 std::vector<Variant> variants(const StudyOptions& o) {
-  const std::string base = o.displayPath.empty() ? defaultDisplayPath() : o.displayPath;
+  // The study's display as every study loads it (square lattices only), before any work.
+  const std::string base = loadStudyDisplay(o).path;
   const std::string oled = dataPath("optics/displays/paper-prototype-measured-oled.json");
   std::vector<Variant> v = {
       {"placeholder", "placeholder primaries (the default display)", base, ""},

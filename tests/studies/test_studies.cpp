@@ -232,7 +232,7 @@ TEST(Studies, NerfPipelineFieldTracksTheAnalyticScene) {
 
 TEST(Studies, UnknownNameIsInputError) {
   EXPECT_THROW(runStudy("no-such-study", {"/nonexistent", ""}), InputError);
-  EXPECT_EQ(studyNames().size(), 6u);
+  EXPECT_EQ(studyNames().size(), 7u);
 }
 
 // The studies sample lenslet cells and EIs as squares: a hex-lattice display is refused by every
