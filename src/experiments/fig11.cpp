@@ -15,6 +15,7 @@
 #include "core/output_file.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
+#include "experiments/fig11_depth.h"
 #include "fields/field_factory.h"
 #include "synthesis/eia_synthesis.h"
 #include "view/reference_renderer.h"
@@ -144,7 +145,9 @@ class Fig11Run {
     ReferenceSettings rs;
     rs.spp = s_.referenceSpp;
     rs.seed = s_.seed;
+    rs.depth = s_.depthError;
     ViewResult ref = renderReference(*in_.field.field, in_.fieldToDisplay, *camera, in_.camera.sensor, rs);
+    const ReferenceDepth refDepth = takeDepthChannels(ref.image);  // the reference images stay RGB
     v.referenceSeconds = ref.stats.seconds;
 
     const PoseImages img = exposeAlike(rec.image, ref.image, refToCdM2_, in_.camera.sensor);
@@ -159,6 +162,8 @@ class Fig11Run {
     v.metrics = compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference_" + v.name, "view_" + v.name);
     v.hasMetrics = true;
     record(v, img);
+    depth.addPose(v.name, v.label, {img.refExposed, img.recExposed, img.refSrgb, img.recSrgb}, refDepth, mask,
+                  metrics[v.name]);
     return v;
   }
 
@@ -178,6 +183,9 @@ class Fig11Run {
   const DisplayModel& dm_;
   double refToCdM2_;
   fs::path dir_;
+
+ public:
+  Fig11DepthError depth{outputs, dir_};  // after dir_: members are made in this order
 };
 
 }  // namespace
@@ -220,6 +228,7 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   run.metrics["calibration"] = s.calibrationPath.empty() ? std::string("none") : s.calibrationPath;
   writeJson(run.metrics, run.out("metrics.json"));
   writeCsv(run.out("metrics.csv"), metricsCsvHeader("view"), run.rows);
+  run.depth.writeFigure(in.display);
   run.outputs.commit();
   return result;
 }
