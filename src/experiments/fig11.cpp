@@ -16,6 +16,7 @@
 #include "core/output_file.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
+#include "experiments/fig11_depth.h"
 #include "fields/field_factory.h"
 #include "synthesis/eia_synthesis.h"
 #include "view/reference_renderer.h"
@@ -153,7 +154,9 @@ class Fig11Run {
     ReferenceSettings rs;
     rs.spp = s_.referenceSpp;
     rs.seed = s_.seed;
+    rs.depth = s_.depthError;
     ViewResult ref = renderReference(*in_.field.field, in_.fieldToDisplay, *camera, in_.camera.sensor, rs);
+    const ReferenceDepth refDepth = takeDepthChannels(ref.image);  // the reference images stay RGB
     v.referenceSeconds = ref.stats.seconds;
 
     const PoseImages img = exposeAlike(rec.image, ref.image, refToCdM2_, in_.camera.sensor);
@@ -168,6 +171,8 @@ class Fig11Run {
     v.metrics = compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference_" + v.name, "view_" + v.name);
     v.hasMetrics = true;
     record(v, img);
+    depth.addPose(v.name, v.label, {img.refExposed, img.recExposed, img.refSrgb, img.recSrgb}, refDepth, mask,
+                  metrics[v.name]);
     if (budget_) budgets.push_back(poseBudgetOf(v, *camera, rec.image, img, mask));
     return v;
   }
@@ -210,6 +215,9 @@ class Fig11Run {
   double refToCdM2_;
   const BudgetScene* budget_;
   fs::path dir_;
+
+ public:
+  Fig11DepthError depth{outputs, dir_};  // after dir_: members are made in this order
 };
 
 // budget.json, budget.csv and the waterfall budget.png.
@@ -289,6 +297,7 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   run.metrics["calibration"] = s.calibrationPath.empty() ? std::string("none") : s.calibrationPath;
   writeJson(run.metrics, run.out("metrics.json"));
   writeCsv(run.out("metrics.csv"), metricsCsvHeader("view"), run.rows);
+  run.depth.writeFigure(in.display);
   run.outputs.commit();
   return result;
 }

@@ -8,6 +8,8 @@
 // over the pixels that see the display; both images at one exposure, compared as sRGB). With a
 // calibration file the EIA's drive values go through it (as `inim eia --calibration`);
 // metrics.json's "calibration" and the contact-sheet heading name it ("none" without).
+// With depthError (the default) the error is also binned by scene depth: depth_error_POSE.csv,
+// reference_POSE_depth.exr, depth_error.png and metrics.json's "depth_error" (fig11_depth.h).
 // All outputs are written together at the end, or none.
 //
 //   Fig11Settings s;
@@ -46,6 +48,7 @@ struct Fig11Settings {
   bool budget = false;
   std::string budgetCalibrationPath;     // the "+ calibration" rung's (default: calibrationPath)
   std::vector<std::string> budgetRungs;  // names of the rungs to run; empty: all
+  bool depthError = true;  // error against scene depth per pose (experiments/fig11_depth.h)
 };
 
 struct Fig11View {

@@ -45,6 +45,7 @@ class TileRenderer {
         const size_t b = t.pixelStart[local], n = t.pixelStart[local + 1] - b;
         PixelRays p;
         p.answers = std::span<const FieldSample>(answers).subspan(b, n);
+        p.rays = std::span<const FieldRay>(t.rays).subspan(b, n);
         if (spectral_) p.wavelengths = std::span<const SampledWavelengths>(t.wavelengths).subspan(b, n);
         p.weights = std::span<const float>(t.weights).subspan(b, n);
         p.spp = settings_.spp;

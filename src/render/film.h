@@ -15,6 +15,7 @@ namespace inim {
 // sample has no ray).
 struct PixelRays {
   std::span<const FieldSample> answers;
+  std::span<const FieldRay> rays;                   // the rays answered, in the field's frame
   std::span<const SampledWavelengths> wavelengths;  // one per ray for a spectral field, else empty
   std::span<const float> weights;                   // the camera's weight / rays per sample
   int spp = 1;                                      // camera samples of the pixel

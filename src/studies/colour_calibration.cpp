@@ -152,11 +152,14 @@ GamutTriangle triangle(const std::string& name, const Json& xy, Vec3 colour) {
 void figures(ReportWriter& w, const Variant& v, const CalibrateResult& r) {
   const std::string pose = r.chains.front().name();
   const Json& cc = r.json["colorchecker"][pose];
-  ChromaticityPlotData d{"ColorChecker at 0°: " + v.title, {}, {}, Vec2d(0.3127, 0.3290)};
+  ChromaticityPlotData d;
+  d.title = "ColorChecker at 0°: " + v.title;
+  d.white = Vec2d(0.3127, 0.3290);
   d.gamuts.push_back(triangle("panel (EIA's primaries)", r.json["panel"]["primaries_xy"], plotPalette(0)));
   d.gamuts.push_back(triangle("panel seen at 0°", r.json["poses"][pose]["primaries_xy"], plotPalette(2)));
   d.gamuts.push_back(triangle("sRGB", Json{{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06}}, plotPalette(4)));
-  DeltaEBarsData bars{"ColorChecker at 0°, CIEDE2000: " + v.title};
+  DeltaEBarsData bars;
+  bars.title = "ColorChecker at 0°, CIEDE2000: " + v.title;
   bars.thresholds = {1.0, 2.0, 3.0};
   std::vector<SwatchChart> charts = {{"target", {}}, {"uncalibrated", {}}, {"calibrated", {}}};
   const double whiteY = r.chains.front().whiteY();

@@ -73,6 +73,44 @@ class CameraRgbFilm final : public Film {
   glm::dmat3 rgbToCamera_;
 };
 
+// Another film's channels, then A (the fraction of the rays that hit) and Z (the mean display
+// z of the hits): the hit is found in the field frame, where FieldSample::depth is measured.
+class WithSurfaceDepth final : public Film {
+ public:
+  WithSurfaceDepth(const Film& colour, const Transform& fieldToDisplay)
+      : colour_(colour), fieldToDisplay_(fieldToDisplay), colourChannels_(colour.channels().size()) {}
+  std::vector<std::string> channels() const override {
+    std::vector<std::string> c = colour_.channels();
+    c.push_back("A");
+    c.push_back("Z");
+    return c;
+  }
+
+  void resolvePixel(const PixelRays& p, float* pixel) const override {
+    colour_.resolvePixel(p, pixel);
+    size_t hits = 0, depths = 0;
+    double zSum = 0.0;
+    for (size_t i = 0; i < p.answers.size(); ++i) {
+      const FieldSample& f = p.answers[i];
+      if (!(f.opacity > 0.0f)) continue;
+      ++hits;
+      if (!std::isfinite(f.depth)) continue;
+      const FieldRay& r = p.rays[i];
+      const Point3d hit = Point3d(r.o) + double(f.depth) * Vec3d(r.d);
+      zSum += fieldToDisplay_.point(hit).z;
+      ++depths;
+    }
+    const size_t rays = p.answers.size();
+    pixel[colourChannels_] = rays ? float(double(hits) / double(rays)) : 0.0f;
+    pixel[colourChannels_ + 1] = depths ? float(zSum / double(depths)) : 0.0f;
+  }
+
+ private:
+  const Film& colour_;
+  const Transform& fieldToDisplay_;
+  size_t colourChannels_;
+};
+
 // An RGB field's colour space -> XYZ (linear: the matrix of the basis vectors) -> camera RGB.
 glm::dmat3 rgbToCameraMatrix(const Field& field, const CameraSensor& sensor) {
   glm::dmat3 toXyz;
@@ -99,7 +137,9 @@ ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, 
   fs.progress = s.progress;
   fs.progressLabel = "reference";
   fs.cameraToField = fieldToDisplay.inverse();
-  FieldRender r = renderThroughCamera(field, camera, ScrambledSobolSampler(s.seed), film, fs);
+  const WithSurfaceDepth filmWithDepth(film, fieldToDisplay);
+  const Film& used = s.depth ? static_cast<const Film&>(filmWithDepth) : film;
+  FieldRender r = renderThroughCamera(field, camera, ScrambledSobolSampler(s.seed), used, fs);
 
   ViewResult out;
   out.image = std::move(r.image);

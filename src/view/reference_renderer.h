@@ -25,6 +25,21 @@
 // renderView's, so the same exposure logic applies (auto exposure maps each image's 99th
 // percentile to 0.9: brightness is comparable, absolute scales are not, since the scene's
 // radiance units and the panel's cd/m^2 differ).
+//
+// Depth (ReferenceSettings::depth): two more channels after R, G, B, for asking where in depth
+// a reconstruction goes wrong (analysis/depth_error.h):
+//   A  the fraction of the pixel's camera rays that hit a surface (FieldSample::opacity > 0);
+//      rays the camera vignetted entirely are not counted, so a covered pixel has A = 1;
+//   Z  the mean display-frame z (mm, > 0 toward the viewer, the MLA at 0) of the first surface
+//      over the rays that hit with a finite depth; 0 where none did. A hit is found in the
+//      field frame (the ray's origin + FieldSample::depth along it, field units) and placed
+//      with `fieldToDisplay`, so any scale of the placement is accounted for.
+// R, G, B are the same, bit for bit, with depth on or off.
+//
+//   ReferenceSettings s;
+//   s.depth = true;
+//   Image img = renderReference(field, placement.toDisplay(), camera, sensor, s).image;
+//   float z = img.at(x, y, img.channelIndex("Z"));
 #include <cstdint>
 
 #include "camera/camera_model.h"
@@ -40,6 +55,7 @@ struct ReferenceSettings {
   uint64_t seed = 1;
   bool progress = true;
   int raysPerBatch = 4096;
+  bool depth = false;  // add channels A and Z (see above)
 };
 
 // `fieldToDisplay`: the placement (Placement::toDisplay()). InputError (key spp) for spp < 1.

@@ -1,7 +1,8 @@
 // The reference view: a scene point at a known display-frame position (through the placement
 // and the display pose) lands on the pixel the camera model predicts; a uniform D65 field is a
 // white furnace; determinism; the images of the reference renderer before it became a call of
-// the field renderer, bit for bit.
+// the field renderer, bit for bit. Depth channels: a plane's display z (through a scaled
+// placement too), colour unchanged by asking for depth, determinism.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -172,4 +173,182 @@ TEST(ReferenceRenderer, SameImagesAsBeforeTheRenderersWereUnified) {
       EXPECT_EQ(r.stats.tracedRays, 19u * 11u * 6u * (cam == 2 ? 4u : 1u));
       EXPECT_EQ(r.stats.emittingRays, hits[cam]);
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// Depth (ReferenceSettings::depth): channels A and Z.
+
+namespace {
+
+// A square of half-width `half` in the plane z = z0 of the field frame, facing +z, emitting a
+// flat spectrum of 1; nothing elsewhere.
+class PlaneField final : public Field {
+ public:
+  PlaneField(double z0, double half) : z0_(z0), half_(half) {}
+  FieldEncoding encoding() const override { return FieldEncoding::Spectral; }
+  void query(std::span<const FieldRay> rays, std::span<const SampledWavelengths>, std::span<FieldSample> out,
+             uint64_t) const override {
+    for (size_t i = 0; i < rays.size(); ++i) {
+      out[i] = FieldSample{};
+      const Vec3d o(rays[i].o), d(rays[i].d);
+      if (!(d.z < 0.0)) continue;
+      const double t = (z0_ - o.z) / d.z;
+      const Vec3d p = o + t * d;
+      if (t <= 0.0 || std::abs(p.x) > half_ || std::abs(p.y) > half_) continue;
+      out[i].L = SampledSpectrum(1.0f);
+      out[i].opacity = 1.0f;
+      out[i].depth = float(t);
+    }
+  }
+  void bounds(Point3& lo, Point3& hi) const override {
+    lo = Point3(float(-half_), float(-half_), float(z0_));
+    hi = Point3(float(half_), float(half_), float(z0_));
+  }
+
+ private:
+  double z0_, half_;
+};
+
+struct DepthCheck {
+  int covered = 0, empty = 0, mixed = 0;
+  double maxZError = 0.0;  // over covered pixels
+  bool emptyHaveZeroZ = true;
+};
+
+DepthCheck checkDepth(const Image& img, double zExpected) {
+  const int a = img.channelIndex("A"), z = img.channelIndex("Z");
+  EXPECT_EQ(a, 3);
+  EXPECT_EQ(z, 4);
+  DepthCheck c;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const float A = img.at(x, y, a), Z = img.at(x, y, z);
+      EXPECT_GE(A, 0.0f);
+      EXPECT_LE(A, 1.0f);
+      if (A == 1.0f) {
+        ++c.covered;
+        c.maxZError = std::max(c.maxZError, std::abs(double(Z) - zExpected));
+      } else if (A == 0.0f) {
+        ++c.empty;
+        c.emptyHaveZeroZ = c.emptyHaveZeroZ && Z == 0.0f;
+      } else {
+        ++c.mixed;
+      }
+    }
+  return c;
+}
+
+}  // namespace
+
+TEST(ReferenceDepth, FlatPlaneHeadOnGivesItsDisplayZ) {
+  // The square covers the middle of the view and leaves a border of background around it.
+  PlaneField plane(5.0, 8.0);
+  DisplayPose pose{0.0, 0.0, 200.0};
+  auto cam = pinholeCamera(pose.cameraPose(), 64, 48, 0.05, 20.0);
+  ReferenceSettings s;
+  s.spp = 8;
+  s.progress = false;
+  s.depth = true;
+  const Image img = renderReference(plane, Transform(), *cam, defaultCamera().sensor, s).image;
+  ASSERT_EQ(img.channels, (std::vector<std::string>{"R", "G", "B", "A", "Z"}));
+  const DepthCheck c = checkDepth(img, 5.0);
+  std::printf("[ measured ] plane z = 5: %d covered, %d mixed, %d empty pixels, max |Z - 5| = %.2e mm\n", c.covered,
+              c.mixed, c.empty, c.maxZError);
+  EXPECT_GT(c.covered, 500);
+  EXPECT_GT(c.empty, 100);
+  EXPECT_GT(c.mixed, 0);  // the square's edges
+  EXPECT_LE(c.maxZError, 1e-3);
+  EXPECT_TRUE(c.emptyHaveZeroZ);
+}
+
+TEST(ReferenceDepth, PlacementScaleIsAppliedToTheHit) {
+  // Field z = 5 placed with scale 2 sits at display z = 10: FieldSample::depth is in field units
+  // along the field-frame ray, half the display distance. A thin lens sends every sample of a
+  // pixel from its own point of the aperture, so the hits differ in everything but z.
+  PlaneField plane(5.0, 5.0);
+  Placement pl;
+  pl.scale = Vec3d(2.0);
+  DisplayPose pose{0.0, 0.0, 200.0};
+  SensorGeometry sensor{64, 48, 0.05};
+  ThinLensCameraModel cam(sensor, pose.cameraPose(), 20.0, 2.0, 150.0, false);
+  ReferenceSettings s;
+  s.spp = 8;
+  s.progress = false;
+  s.depth = true;
+  const Image img = renderReference(plane, pl.toDisplay(), cam, defaultCamera().sensor, s).image;
+  const DepthCheck c = checkDepth(img, 10.0);
+  std::printf("[ measured ] plane at field z = 5, scale 2: %d covered pixels, max |Z - 10| = %.2e mm\n", c.covered,
+              c.maxZError);
+  EXPECT_GT(c.covered, 500);
+  EXPECT_LE(c.maxZError, 1e-3);
+  EXPECT_TRUE(c.emptyHaveZeroZ);
+}
+
+// R, G, B do not depend on whether depth is asked for: the same bits, for every camera kind of
+// the unification test above (a dispersive one included) and both field encodings.
+TEST(ReferenceDepth, ColourIsBitIdenticalWithDepthOnOrOff) {
+  using namespace inim::render_test;
+  const ViewingPose pose{{10.0, 5.0, 250.0}, {0.0, 1.0, -2.0}, {0.0, 1.0, 0.0}};
+  const SensorGeometry sensor{19, 11, 0.05};
+  const Transform place = Transform::translate(Vec3d(1.0, -2.0, 3.0)) * Transform::scale(Vec3d(1.5));
+  for (int rgb = 0; rgb < 2; ++rgb)
+    for (int cam = 0; cam < 3; ++cam) {
+      ProbeField f(rgb ? FieldEncoding::RGB : FieldEncoding::Spectral, true);
+      std::unique_ptr<CameraModel> m;
+      if (cam == 0) m = std::make_unique<PinholeCameraModel>(sensor, pose, 20.0, true);
+      if (cam == 1) m = std::make_unique<ThinLensCameraModel>(sensor, pose, 20.0, 2.8, 240.0, true);
+      if (cam == 2) m = std::make_unique<PrismPinhole>(sensor, pose);
+      ReferenceSettings s;
+      s.spp = 6;
+      s.seed = 5;
+      s.progress = false;
+      s.raysPerBatch = 29;
+      const ViewResult off = renderReference(f, place, *m, defaultCamera().sensor, s);
+      s.depth = true;
+      const ViewResult on = renderReference(f, place, *m, defaultCamera().sensor, s);
+      ASSERT_EQ(off.image.numChannels(), 3);
+      ASSERT_EQ(on.image.numChannels(), 5);
+      int differing = 0, hitPixels = 0;
+      for (int y = 0; y < sensor.heightPx; ++y)
+        for (int x = 0; x < sensor.widthPx; ++x) {
+          for (int c = 0; c < 3; ++c) {
+            const float a = off.image.at(x, y, c), b = on.image.at(x, y, c);
+            if (std::memcmp(&a, &b, sizeof(float)) != 0) ++differing;
+          }
+          if (on.image.at(x, y, 3) > 0.0f) ++hitPixels;
+        }
+      EXPECT_EQ(differing, 0) << (rgb ? "RGB " : "spectral ") << m->describe();
+      EXPECT_EQ(on.stats.emittingRays, off.stats.emittingRays);
+      // A counts the rays the probe field answers with opacity > 0, as the stats do.
+      EXPECT_EQ(hitPixels > 0, on.stats.emittingRays > 0) << m->describe();
+    }
+}
+
+TEST(ReferenceDepth, BitIdenticalOnOneAndTwoThreads) {
+  PlaneField plane(3.0, 6.0);
+  Placement pl;
+  pl.scale = Vec3d(1.5);
+  pl.rotateDeg = Vec3d(10.0, -20.0, 5.0);
+  DisplayPose pose{7.0, -3.0, 200.0};
+  auto cam = pinholeCamera(pose.cameraPose(), 48, 32, 0.02, 20.0, true);
+  ReferenceSettings s;
+  s.spp = 4;
+  s.progress = false;
+  s.depth = true;
+  s.raysPerBatch = 37;
+  Image one, two;
+  {
+    ThreadLimit t(1);
+    one = renderReference(plane, pl.toDisplay(), *cam, defaultCamera().sensor, s).image;
+  }
+  {
+    ThreadLimit t(2);
+    two = renderReference(plane, pl.toDisplay(), *cam, defaultCamera().sensor, s).image;
+  }
+  ASSERT_EQ(one.data.size(), two.data.size());
+  EXPECT_EQ(std::memcmp(one.data.data(), two.data.data(), one.data.size() * sizeof(float)), 0);
+  double zMax = 0.0;
+  for (int y = 0; y < one.height; ++y)
+    for (int x = 0; x < one.width; ++x) zMax = std::max(zMax, double(std::abs(one.at(x, y, 4))));
+  EXPECT_GT(zMax, 0.0);  // the tilted plane is in view
 }

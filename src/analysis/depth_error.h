@@ -1,0 +1,92 @@
+#pragma once
+// Where in depth a reconstruction is wrong: the error of a reconstruction against its reference,
+// binned by the depth of the scene surface each pixel sees (the reference's Z channel,
+// view/reference_renderer.h), and a figure of it with the planes that explain it marked.
+//
+// A pixel counts when the mask says so and its coverage (the reference's A channel) is >= 0.5:
+// it sees a surface rather than a mix of surface and background. Bins are equal slices of z;
+// per bin:
+//   relative RMSE  sqrt(mean |rec - ref|^2) / sqrt(mean |ref|^2), |.| over R, G, B, on the
+//                  images as given (fig11: linear camera RGB, exposed alike);
+//   mean CIEDE2000 of a per-pixel map (deltaE2000Map of the encoded images, as compareImages
+//                  uses; without one, of the two images taken as linear Rec.709).
+// A bin with fewer than `minPixels` pixels keeps its count but has NaN metrics (too few to say).
+//
+//   DepthBinning b;                                // 24 bins over the 1st..99th percentile of z
+//   std::vector<float> de = deltaE2000Map(refSrgb, recSrgb, "srgb", "srgb");
+//   auto bins = errorVsDepth(ref, rec, z, a, &mask, b, &de);
+//   writePlot(depthErrorPlot({{"0°", bins}}, marks, DepthErrorQuantity::RelativeRmse), "e.png");
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/plot.h"
+#include "core/image.h"
+#include "core/json_config.h"
+#include "core/pixel_mask.h"
+
+namespace inim {
+
+struct DepthBinning {
+  // The z range binned, mm; default: the 1st and 99th percentiles of the counted pixels' z
+  // (pixels outside the range are left out). A range of zero width (a flat scene) is widened
+  // to 1 mm about its z.
+  std::optional<double> minZ, maxZ;
+  int count = 24;             // bins, >= 1
+  double minCoverage = 0.5;   // a pixel counts from this coverage (A) up
+  int64_t minPixels = 20;     // fewer pixels in a bin: NaN metrics
+};
+
+struct DepthBin {
+  double zLo = 0.0, zHi = 0.0, zCentre = 0.0;  // mm, display frame
+  int64_t pixels = 0;
+  double relRmse = 0.0;     // NaN when pixels < minPixels or the reference is black there
+  double de2000Mean = 0.0;  // NaN when pixels < minPixels
+};
+
+// `depthZ` and `coverage`: width x height, row-major (the reference's Z and A channels).
+// `deltaE`: an optional per-pixel CIEDE2000 map of the same size (see above). `mask`: null for
+// every pixel. Empty when no pixel counts. InputError when sizes disagree or the binning is
+// invalid (count < 1, minZ >= maxZ when both given).
+std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstruction,
+                                   const std::vector<float>& depthZ, const std::vector<float>& coverage,
+                                   const PixelMask* mask, const DepthBinning& b = {},
+                                   const std::vector<float>* deltaE = nullptr);
+
+// [{z_lo, z_hi, pixels, rel_rmse, de2000_mean}, ...]; NaN metrics as null.
+Json depthBinsJson(const std::vector<DepthBin>& bins);
+// CSV: z_lo_mm, z_hi_mm, z_centre_mm, pixels, rel_rmse, de2000_mean ("nan" where NaN).
+std::vector<std::string> depthBinsCsvHeader();
+std::vector<std::vector<std::string>> depthBinsCsvRows(const std::vector<DepthBin>& bins);
+
+// ---------------------------------------------------------------------------------------
+// The figure
+
+struct DepthErrorCurve {
+  std::string name;  // legend entry (a pose: "0°", "H -7°", ...)
+  std::vector<DepthBin> bins;
+};
+
+// What is marked: the MLA plane z = 0 always; the reference image plane L (where the lenslets
+// image the panel; a vertical line) and the depth-of-field band |z| <= depthOfFieldMm (shaded)
+// when given.
+struct DepthMarks {
+  std::optional<double> referencePlaneMm;
+  std::string referencePlaneLabel = "L";
+  double depthOfFieldMm = 0.0;  // 0: no band
+  std::string depthOfFieldLabel = "depth of field";
+};
+
+enum class DepthErrorQuantity { RelativeRmse, DeltaE2000 };
+
+// One quantity against z (bin centres; NaN bins break the lines), a curve per entry. The x range
+// holds every bin and the marked planes; the band is clipped to it. The y axis starts at 0, or
+// is logarithmic when the values spread over more than a decade.
+Plot depthErrorPlot(const std::vector<DepthErrorCurve>& curves, const DepthMarks& marks, DepthErrorQuantity q);
+// Relative RMSE above (with the legend), mean CIEDE2000 below, on the same z range: one image
+// (PNG-ready sRGB).
+Image depthErrorFigure(const std::vector<DepthErrorCurve>& curves, const DepthMarks& marks,
+                       const std::string& title = "Error against depth");
+
+}  // namespace inim
