@@ -21,11 +21,12 @@ echo "run: orthoscopic EIA of paper-fig7 on the paper's display (6,215,625 rays,
 echo "run: the scene itself, rendered spectrally from 350 mm -> $OUT/paper-fig7.exr, .png"
 "$INIM" render --out "$OUT/paper-fig7.exr" --width 1280 --height 560 --spp 32
 
-echo "run: the paper's Fig. 11 in software: 5 reconstructed + 5 reference views -> $OUT/fig11/"
-"$INIM" fig11 --out "$OUT/fig11"
-
 echo "run: colour calibration of the display as the camera sees it at 0 and +-7 deg -> $OUT/calibration/"
 "$INIM" calibrate --out "$OUT/calibration"
+
+echo "run: the paper's Fig. 11 in software: 5 reconstructed + 5 reference views, the error budget and"
+echo "     the error against depth of each -> $OUT/fig11/"
+"$INIM" fig11 --out "$OUT/fig11" --budget --budget-calibration "$OUT/calibration/panel_correction.cube"
 
 echo "run: Fig. 11 with that calibration applied to the EIA -> $OUT/fig11-calibrated/"
 "$INIM" fig11 --out "$OUT/fig11-calibrated" --calibration "$OUT/calibration/panel_correction.cube"
