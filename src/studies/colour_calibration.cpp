@@ -309,7 +309,7 @@ StudyReport runColourCalibration(const StudyOptions& o) {
          "available as optics/displays/paper-prototype-measured-oled.json. Characterising the real panel "
          "(`inim calibrate --display <measured> --assumed-display <what the EIAs are made for>`) is what the "
          "mismatch case stands for.\n\n");
-  w.results(values, "");
+  w.text("**Result.**\n\n" + boundsTable(values) + "\n");
   w.verdict("in-gamut hold-out colours at 0° after calibration: mean ≤ 1.0, p95 ≤ 2.0, max ≤ 3.0 (the \"recommended\" "
             "grade of display-profiling verification); calibration at least halves the mismatched panel's error",
             values);
