@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/colormap.h"
 #include "analysis/metrics.h"
 #include "core/parallel.h"
 #include "draw/text.h"
@@ -135,7 +136,7 @@ Image composeContactSheet(const SheetGrid& grid, const ContactSheetOptions& opt,
   return sheet;
 }
 
-SheetGrid fig11Grid(const Fig11Views& v) {
+SheetGrid fig11Grid(const Fig11Views& v, const std::string& errorTitle) {
   SheetGrid grid(3, std::vector<std::optional<SheetCell>>(6));
   auto put = [&](const std::optional<ViewPair>& p, int row, int group) {
     if (!p) return;
@@ -147,11 +148,34 @@ SheetGrid fig11Grid(const Fig11Views& v) {
   put(v.centre, 1, 1);
   put(v.right, 1, 2);
   put(v.bottom, 2, 1);
+  // The error maps, left to right as the display turns: left, top, centre, bottom, right.
+  std::vector<std::optional<SheetCell>> maps(6);
+  bool any = false;
+  int column = 0;
+  for (const std::optional<ViewPair>* p : {&v.left, &v.top, &v.centre, &v.bottom, &v.right}) {
+    if (*p && (*p)->errorMap) maps[size_t(column)] = SheetCell{(*p)->label + "  " + errorTitle, *(*p)->errorMap}, any = true;
+    ++column;
+  }
+  if (any) grid.push_back(maps);
   return grid;
 }
 
-Image composeFig11Sheet(const Fig11Views& views, const ContactSheetOptions& opt, SheetLayout* layoutOut) {
-  return composeContactSheet(fig11Grid(views), opt, 2, layoutOut);
+Image composeFig11Sheet(const Fig11Views& views, const ContactSheetOptions& opt, SheetLayout* layoutOut,
+                        const std::string& errorTitle) {
+  return composeContactSheet(fig11Grid(views, errorTitle), opt, 2, layoutOut);
+}
+
+Image errorMapImage(const std::vector<float>& error, int width, int height, double maxValue,
+                    const std::vector<uint8_t>* mask) {
+  Image img(width, height, {"R", "G", "B"});
+  for (size_t i = 0; i < size_t(width) * size_t(height); ++i) {
+    const bool on = !mask || (*mask)[i] != 0;
+    const float e = error[i];
+    const Vec3 c = on && std::isfinite(e) ? colorMap(ColorMap::Viridis, std::clamp(double(e) / maxValue, 0.0, 1.0))
+                                          : Vec3(0.5f);
+    for (int k = 0; k < 3; ++k) img.data[i * 3 + size_t(k)] = c[k];
+  }
+  return img;
 }
 
 Image toDisplay(const Image& linear, const std::string& space, float exposure) {

@@ -10,6 +10,7 @@
 //
 // composeFig11Sheet() lays out the paper's Fig. 11: a cross of five viewing directions
 // (centre, left, right, top, bottom), each a pair of cells "reference | reconstruction".
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,6 +63,7 @@ struct ViewPair {
   std::string label;  // e.g. "0°", "-7° H", "+7° V"
   Image reference;
   Image reconstruction;
+  std::optional<Image> errorMap;  // e.g. CIEDE2000 per pixel as a colour map (errorMapImage)
 };
 struct Fig11Views {
   std::optional<ViewPair> centre, left, right, top, bottom;
@@ -70,9 +72,15 @@ struct Fig11Views {
 //   row 0: [ -, - | top ref, top rec | -, - ]
 //   row 1: [ left ref, left rec | centre ref, centre rec | right ref, right rec ]
 //   row 2: [ -, - | bottom ref, bottom rec | -, - ]
-// titled "<label>  reference" and "<label>  reconstruction".
-SheetGrid fig11Grid(const Fig11Views& views);
-Image composeFig11Sheet(const Fig11Views& views, const ContactSheetOptions& opt = {}, SheetLayout* layoutOut = nullptr);
+// titled "<label>  reference" and "<label>  reconstruction"; when the pairs carry error maps, a
+// fourth row holds them: [ left | top | centre | bottom | right ], titled "<label>  <errorTitle>".
+SheetGrid fig11Grid(const Fig11Views& views, const std::string& errorTitle = "error");
+// A per-pixel error (row-major, width x height) as a Viridis image, 0 at `maxValue` and above
+// yellow; pixels where `mask` (optional, same size) is off are mid grey.
+Image errorMapImage(const std::vector<float>& error, int width, int height, double maxValue,
+                    const std::vector<uint8_t>* mask = nullptr);
+Image composeFig11Sheet(const Fig11Views& views, const ContactSheetOptions& opt = {}, SheetLayout* layoutOut = nullptr,
+                        const std::string& errorTitle = "error");
 
 // A linear image in colour space `space` as sRGB-encoded display values (3 channels, R G B),
 // after multiplying by `exposure`, through OpenColorIO; values are clamped to [0, 1].

@@ -81,6 +81,9 @@ Inputs loadInputs(const Fig11Settings& s) {
 }
 
 // The reconstruction and the reference of one pose, exposed alike, linear and sRGB.
+// The top of the contact sheet's error-map scale (CIEDE2000; larger errors saturate).
+constexpr double kErrorMapMax = 50.0;
+
 struct PoseImages {
   Image recExposed, refExposed, recSrgb, refSrgb;
   double exposure = 1.0;  // the factor on the reconstruction (display units)
@@ -170,7 +173,7 @@ class Fig11Run {
     copt.spaceA = copt.spaceB = "srgb";
     v.metrics = compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference_" + v.name, "view_" + v.name);
     v.hasMetrics = true;
-    record(v, img);
+    record(v, img, mask);
     depth.addPose(v.name, v.label, {img.refExposed, img.recExposed, img.refSrgb, img.recSrgb}, refDepth, mask,
                   metrics[v.name]);
     if (budget_) budgets.push_back(poseBudgetOf(v, *camera, rec.image, img, mask));
@@ -178,14 +181,20 @@ class Fig11Run {
   }
 
  private:
-  void record(const Fig11View& v, const PoseImages& img) {
+  // CIEDE2000 per pixel, 0 to kErrorMapMax, over the pixels that see the display.
+  static Image errorMap(const PoseImages& img, const PixelMask& mask) {
+    const std::vector<float> de = deltaE2000Map(img.refSrgb, img.recSrgb, "srgb", "srgb");
+    return errorMapImage(de, img.refSrgb.width, img.refSrgb.height, kErrorMapMax, &mask.on);
+  }
+
+  void record(const Fig11View& v, const PoseImages& img, const PixelMask& mask) {
     Json mj = metricsJson(v.metrics);
     mj["rot_h_deg"] = v.pose.rotHDeg;
     mj["rot_v_deg"] = v.pose.rotVDeg;
     mj["reconstruction_seconds"] = v.reconstructionSeconds;
     metrics[v.name] = mj;
     rows.push_back(metricsCsvRow(v.name, v.metrics));
-    sheetSlot(sheet, v.name) = ViewPair{v.label, img.refSrgb, img.recSrgb};
+    sheetSlot(sheet, v.name) = ViewPair{v.label, img.refSrgb, img.recSrgb, errorMap(img, mask)};
   }
 
   // The budget's rungs at this pose, against the same reference and a second one (another
@@ -293,7 +302,8 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
                 in.camera.name + " at " + std::to_string(int(std::lround(in.distanceMm))) + " mm, MLA " +
                 mlaKindName(s.mla) + ", calibration " +
                 (in.calibration ? fs::path(s.calibrationPath).filename().string() : std::string("none"));
-  writeImage(composeFig11Sheet(run.sheet, cso), run.out("contact_sheet.png"));
+  writeImage(composeFig11Sheet(run.sheet, cso, nullptr, "CIEDE2000 0-" + std::to_string(int(kErrorMapMax)) + " (viridis)"),
+             run.out("contact_sheet.png"));
   run.metrics["calibration"] = s.calibrationPath.empty() ? std::string("none") : s.calibrationPath;
   writeJson(run.metrics, run.out("metrics.json"));
   writeCsv(run.out("metrics.csv"), metricsCsvHeader("view"), run.rows);

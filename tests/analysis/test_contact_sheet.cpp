@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "analysis/contact_sheet.h"
+#include "analysis/colormap.h"
 #include "draw/text.h"
 #include "spectral/color.h"
 
@@ -91,7 +92,8 @@ TEST(ContactSheet, Fig11CrossPlacesEveryView) {
   Fig11Views v;
   const char* labels[] = {"0°", "-7° H", "+7° H", "+7° V", "-7° V"};
   std::optional<ViewPair>* slots[] = {&v.centre, &v.left, &v.right, &v.top, &v.bottom};
-  for (int i = 0; i < 5; ++i) *slots[i] = ViewPair{labels[i], pattern(90, 80, 0.1f * i), pattern(90, 80, 0.05f + 0.1f * i)};
+  for (int i = 0; i < 5; ++i)
+    *slots[i] = ViewPair{labels[i], pattern(90, 80, 0.1f * i), pattern(90, 80, 0.05f + 0.1f * i), std::nullopt};
   SheetLayout L;
   Image sheet = composeFig11Sheet(v, o, &L);
   // 6 columns, each as wide as the widest of its 90 px images and its titles "<label>
@@ -168,4 +170,29 @@ TEST(ContactSheet, ToDisplayEncodesSrgb) {
   EXPECT_NEAR(d.at(1, 0, 2), 1.0f, 1e-4);
   Image half = toDisplay(lin, "lin_rec709", 0.5f);
   EXPECT_NEAR(half.at(0, 0, 1), srgbEncode(0.25f), 1e-4);
+}
+
+// With error maps the cross gains a fourth row: left, top, centre, bottom, right, each map
+// placed as given; an error map shows 0 as Viridis' dark end, the maximum as its yellow end, and
+// masked pixels as grey.
+TEST(ContactSheet, Fig11ErrorMapsFormAFourthRow) {
+  Fig11Views v;
+  const char* labels[] = {"H -7°", "V +7°", "0°", "V -7°", "H +7°"};
+  std::optional<ViewPair>* slots[] = {&v.left, &v.top, &v.centre, &v.bottom, &v.right};
+  for (int i = 0; i < 5; ++i)
+    *slots[i] = ViewPair{labels[i], pattern(40, 30, 0.1f), pattern(40, 30, 0.2f), pattern(40, 30, 0.1f * i)};
+  SheetLayout L;
+  const Image sheet = composeFig11Sheet(v, {}, &L, "dE");
+  ASSERT_EQ(L.cells.size(), 4u);
+  for (int i = 0; i < 5; ++i) {
+    const CellRect& c = L.cells[3][size_t(i)];
+    ASSERT_TRUE(c.used) << labels[i];
+    expectPlaced(sheet, *(*slots[i])->errorMap, c.x, c.y);
+  }
+  const std::vector<float> e = {0.0f, 25.0f, 50.0f, 80.0f};
+  const std::vector<uint8_t> mask = {1, 1, 1, 0};
+  const Image m = errorMapImage(e, 4, 1, 50.0, &mask);
+  EXPECT_NEAR(m.at(0, 0, 0), colorMap(ColorMap::Viridis, 0.0).x, 1e-6);
+  EXPECT_NEAR(m.at(2, 0, 1), colorMap(ColorMap::Viridis, 1.0).y, 1e-6);
+  EXPECT_FLOAT_EQ(m.at(3, 0, 0), 0.5f);
 }
