@@ -30,19 +30,6 @@ namespace inim {
 
 namespace {
 
-struct PoseSpec {
-  const char* name;   // file-name stem
-  const char* label;  // contact-sheet label
-  double rotH, rotV;  // sign of the turn (the magnitude is the settings' angle)
-};
-// Left/right: the display turned about its vertical axis; top/bottom: about its horizontal axis.
-// The sign convention is view/display_pose.h's.
-constexpr PoseSpec kPoses[5] = {{"centre", "0°", 0, 0},
-                                {"left", "H -7°", -7, 0},
-                                {"right", "H +7°", 7, 0},
-                                {"top", "V +7°", 0, 7},
-                                {"bottom", "V -7°", 0, -7}};
-
 void validate(const Fig11Settings& s) {
   for (auto [v, key] : {std::pair{s.spp, "spp"}, {s.referenceSpp, "reference_spp"}, {s.eiaSpp, "eia_spp"},
                         {s.width, "width"}})
@@ -137,13 +124,13 @@ class Fig11Run {
 
   std::string out(const std::string& name) { return outputs.add((dir_ / name).string()); }
 
-  Fig11View renderPose(const PoseSpec& p) {
+  // Left/right: the display turned about its vertical axis; top/bottom: about its horizontal
+  // axis (view/display_pose.h fig11Poses, and its sign convention).
+  Fig11View renderPose(const NamedPose& p) {
     Fig11View v;
     v.name = p.name;
     v.label = p.label;
-    v.pose.rotHDeg = p.rotH == 0 ? 0.0 : std::copysign(s_.angleDeg, p.rotH);
-    v.pose.rotVDeg = p.rotV == 0 ? 0.0 : std::copysign(s_.angleDeg, p.rotV);
-    v.pose.distanceMm = in_.distanceMm;
+    v.pose = p.pose;
     ViewCameraOptions co;
     co.width = s_.width;
     auto camera = makeViewCamera(in_.camera, v.pose, co);
@@ -285,7 +272,7 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   Fig11Run run(s, in, dm, eia.stats.exposureUsed * in.display.panel.peakLuminanceCdM2, s.budget ? &scene : nullptr);
   writeImage(eia.eia, run.out("eia.exr"));
   writeImage(encodeForPanel(eia.eia, in.display.panel.eotf), run.out("eia.png"));
-  for (const PoseSpec& p : kPoses) {
+  for (const NamedPose& p : fig11Poses(s.angleDeg, in.distanceMm)) {
     result.views.push_back(run.renderPose(p));
     if (observer.viewDone) observer.viewDone(result.views.back());
     if (observer.budgetDone && run.budgets.size() > result.budgets.size()) {
