@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/output_file.h"
+#include "core/progress.h"
 
 namespace fs = std::filesystem;
 
@@ -315,11 +316,18 @@ CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserv
   makePatchSets(s, r);
 
   auto t = Clock::now();
+  // Six renders per pose (three primaries, two sensors), two per direct check.
+  const int directs = std::min(s.directChecks, 5);
+  ProgressBar bar("calibrate", uint64_t(6 * l.poses.size() + 2 * size_t(directs)),
+                  s.progress && ProgressBar::stderrIsTerminal());
   for (const NamedPose& pose : l.poses) {
     r.chains.emplace_back(characterisePose(l.optics, pose, s.render), r.path.input);
+    bar.add(6);
     if (observer.poseDone) observer.poseDone(r.chains.back().response());
   }
   r.maxDirectCheckError = directCheck(l, s, r.chains.front());
+  bar.add(uint64_t(2 * directs));
+  bar.finish();
   r.characteriseSeconds = since(t);
   r.stages = stageTable(r.path, r.chains, r.colorChecker);
   t = Clock::now();

@@ -45,6 +45,7 @@ struct CalibrateSettings {
   std::string correction = "auto";            // matrix_3x3, root_polynomial_2, lut3d or auto
   std::string patchCsv;                       // optional: more colours to verify (name,X,Y,Z)
   int directChecks = 3;                       // patches rendered directly against the linear model
+  bool progress = true;                       // a bar over the renders, on a terminal only
   ChainRenderSettings render;
 };
 

@@ -44,6 +44,7 @@ CalibrateSettings settingsFor(const StudyOptions& o, const Variant& v) {
   s.outDir = (std::filesystem::path(o.outDir) / v.name).string();
   s.displayPath = v.display;
   s.assumedDisplayPath = v.assumed;
+  s.progress = false;
   if (o.quick) {
     s.poses = {"centre", "right"};
     s.render.width = 128;
