@@ -9,6 +9,7 @@
 #include "calibration/lut_io.h"
 #include "calibration/lut_text.h"
 #include "core/error.h"
+#include "core/output_file.h"
 
 namespace inim {
 namespace {

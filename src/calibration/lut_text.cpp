@@ -37,14 +37,6 @@ bool parseNumber(std::string_view token, double& value) {
   return result.ec == std::errc() && result.ptr == token.data() + token.size();
 }
 
-void writeTextFile(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot write " + path);
-  out << text;
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + path);
-}
-
 std::string readTextFile(const std::string& path, const std::string& expected) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "", "a readable " + expected);

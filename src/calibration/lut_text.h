@@ -17,8 +17,6 @@ std::string tripleText(const Vec3d& v);
 std::vector<std::string_view> splitWhitespace(std::string_view text);
 // True when the whole token is a decimal number; non-finite spellings parse (check isfinite).
 bool parseNumber(std::string_view token, double& value);
-// Writes `text` to `path`; throws if the file cannot be written completely.
-void writeTextFile(const std::string& path, const std::string& text);
 // The whole file; InputError when it cannot be read.
 std::string readTextFile(const std::string& path, const std::string& expected);
 

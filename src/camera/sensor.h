@@ -61,6 +61,9 @@ class CameraSensor {
   // D65 with Y = 1 gives (1, 1, 1).
   Vec3d cameraRgb(const Spectrum& radiance) const;
   Vec3d toXyz(const Vec3d& cameraRgb) const { return fit_.cameraToXyz * cameraRgb; }
+  // XYZ -> white-balanced camera RGB, the inverse of toXyz: how a colour known only as XYZ (an
+  // RGB field's, the observer's) becomes camera RGB.
+  glm::dmat3 xyzToCameraRgb() const { return glm::inverse(fit_.cameraToXyz); }
   const ColorFit& colorFit() const { return fit_; }
 
  private:

@@ -37,11 +37,6 @@ Vec3d exposedDrive(const PanelColor& panel, double exposure, const Vec3d& xyz) {
 
 }  // namespace
 
-Vec3d d65WhiteXyz() {
-  const Vec3d w = spectrumToXYZ(cie::D65());
-  return w / w.y;
-}
-
 PatchSet colorCheckerPatches(const std::string& path) {
   const std::string file = path.empty() ? dataPath("spectra/colorchecker_babelcolor_avg.csv") : path;
   PatchSet set{"colorchecker", false, {}};

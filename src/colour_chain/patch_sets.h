@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/geometry.h"
+#include "spectral/cie.h"
 #include "spectral/spectrum.h"
 #include "synthesis/panel_color.h"
 
@@ -36,9 +37,6 @@ struct PatchSet {
   bool driveLevels = false;
   std::vector<Patch> patches;
 };
-
-// The XYZ of D65 with Y = 1 (the field white and the reference white of CIELAB here).
-Vec3d d65WhiteXyz();
 
 // The 24 ColorChecker patches under D65 (reflectances extended as constants beyond the table's
 // 380-730 nm). `path` "": spectra/colorchecker_babelcolor_avg.csv.

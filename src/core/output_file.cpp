@@ -4,6 +4,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <stdexcept>
 
 #include "core/error.h"
 
@@ -48,6 +50,14 @@ std::string dataPath(const std::string& rel) {
   fs::path p(rel);
   if (p.is_absolute() || fs::exists(p)) return rel;
   return (fs::path(dataDir()) / p).string();
+}
+
+void writeTextFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + path);
 }
 
 }  // namespace inim

@@ -25,6 +25,10 @@ class OutputSet {
   bool committed_ = false;
 };
 
+// Writes `text` to `path` (a temporary from OutputSet::add, usually); throws if the file cannot
+// be written completely.
+void writeTextFile(const std::string& path, const std::string& text);
+
 // Folder that holds spectra/, optics/, scenes/: $INIM_DATA_DIR or the source tree.
 std::string dataDir();
 // `rel` under dataDir(), unless it is absolute or exists relative to the working directory.

@@ -274,13 +274,6 @@ Json panelJson(const PanelColor& p) {
   return Json{{"primaries_xy", prim}, {"white_xy", {p.whiteXY().x, p.whiteXY().y}}};
 }
 
-void writeText(const std::string& path, const std::string& text) {
-  FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw std::runtime_error("cannot write " + path);
-  std::fputs(text.c_str(), f);
-  std::fclose(f);
-}
-
 void writeTables(OutputSet& out, const fs::path& dir, const CalibrateResult& r) {
   std::vector<std::vector<std::string>> rows;
   for (const StageRow& s : r.stages)
@@ -372,7 +365,7 @@ CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserv
   r.files = exportCalibration(out, s.outDir, "panel_correction", *r.exported, OcioColourSpaceSettings{});
   j["files"] = {{"cube", r.files.cube}, {"clf", r.files.clf}, {"ocio", r.files.config}};
   writeTables(out, dir, r);
-  writeText(out.add((dir / "calibration.json").string()), j.dump(2) + "\n");
+  writeTextFile(out.add((dir / "calibration.json").string()), j.dump(2) + "\n");
   if (!outputs) out.commit();
   return r;
 }

@@ -1,5 +1,6 @@
 #include "experiments/error_budget.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -17,7 +18,8 @@ namespace inim {
 namespace {
 
 BudgetRung rung(std::string name, std::string label, bool sub, bool mla, bool glass, bool colour, bool cal = false) {
-  return BudgetRung{std::move(name), std::move(label), sub, mla, glass, colour, cal};
+  const bool removal = name[0] == '-';
+  return BudgetRung{std::move(name), std::move(label), sub, mla, glass, colour, cal, removal};
 }
 
 // Each panel pixel a uniform emitter of its R, G and B: three whole-pixel squares, one per
@@ -35,7 +37,7 @@ SubpixelLayout uniformPixelLayout() {
 // XYZ through the inverse of the sensor's fitted camera RGB -> XYZ matrix.
 Image observerAsCamera(const Image& whiteBalancedXyz, const CameraSensor& sensor) {
   Image out = whiteBalancedXyz;
-  const glm::dmat3 toCamera = glm::inverse(sensor.colorFit().cameraToXyz);
+  const glm::dmat3 toCamera = sensor.xyzToCameraRgb();
   const Vec3d white = d65WhiteXyz();
   const int n = out.numChannels();
   for (size_t i = 0; i < size_t(out.width) * size_t(out.height); ++i) {
@@ -72,42 +74,36 @@ bool isFullChain(const BudgetRung& r) { return r.subpixels && r.realMla && r.cov
 
 }  // namespace
 
-std::vector<BudgetRung> budgetLadder() {
+std::vector<BudgetRung> budgetRungs() {
   return {rung("ideal", "ideal display", false, false, false, false),
           rung("+subpixels", "+ subpixels", true, false, false, false),
           rung("+real_mla", "+ real MLA", true, true, false, false),
           rung("+cover_glass", "+ cover glass", true, true, true, false),
           rung("+colour_chain", "+ colour chain (full)", true, true, true, true),
-          rung("+calibration", "+ calibration", true, true, true, true, true)};
-}
-
-std::vector<BudgetRung> budgetRemoveOne() {
-  return {rung("-subpixels", "full - subpixels", false, true, true, true),
+          rung("+calibration", "+ calibration", true, true, true, true, true),
+          rung("-subpixels", "full - subpixels", false, true, true, true),
           rung("-real_mla", "full - real MLA", true, false, true, true),
           rung("-cover_glass", "full - cover glass", true, true, false, true),
           rung("-colour_chain", "full - colour chain", true, true, true, false)};
 }
 
 std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names) {
-  std::vector<BudgetRung> all = budgetLadder(), out;
-  for (const BudgetRung& r : budgetRemoveOne()) all.push_back(r);
-  for (const std::string& n : names) {
-    bool found = false;
-    for (const BudgetRung& r : all)
-      if (r.name == n) out.push_back(r), found = true;
-    if (!found) {
+  const std::vector<BudgetRung> all = budgetRungs();
+  std::vector<BudgetRung> out;
+  for (const std::string& n : names)
+    if (std::none_of(all.begin(), all.end(), [&](const BudgetRung& r) { return r.name == n; })) {
       std::string valid;
       for (const BudgetRung& r : all) valid += (valid.empty() ? "" : ", ") + r.name;
       throw InputError("", "budget_rungs", "\"" + n + "\"", "one of " + valid);
     }
-  }
+  for (const BudgetRung& r : all)
+    if (std::find(names.begin(), names.end(), r.name) != names.end()) out.push_back(r);
   return out;
 }
 
 PoseBudget poseBudget(const BudgetScene& s, const CameraModel& camera, const Image& reference,
                       const Image& secondReference, double exposure, const PixelMask& mask,
-                      const std::vector<BudgetRung>& ladder, const std::vector<BudgetRung>& removeOne,
-                      const Image* fullChainView) {
+                      const std::vector<BudgetRung>& rungs, const Image* fullChainView) {
   const CameraSensor& sensor = s.camera->sensor;
   const Image refSrgb = cameraRgbToSrgb(reference, sensor);
   CompareOptions copt;
@@ -126,8 +122,7 @@ PoseBudget poseBudget(const BudgetScene& s, const CameraModel& camera, const Ima
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
   };
-  for (const BudgetRung& r : ladder) b.ladder.push_back(run(r));
-  for (const BudgetRung& r : removeOne) b.removeOne.push_back(run(r));
+  for (const BudgetRung& r : rungs) (r.removal ? b.removeOne : b.ladder).push_back(run(r));
   return b;
 }
 

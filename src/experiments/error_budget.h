@@ -17,7 +17,7 @@
 // built (no cover glass to add, no calibration given) is skipped with a note.
 //
 //   BudgetScene scene{display, layout, eia, calibratedEia, camera};
-//   PoseBudget b = poseBudget(scene, *cameraModel, reference, secondReference, exposure, mask, settings);
+//   PoseBudget b = poseBudget(scene, *cameraModel, reference, secondReference, exposure, mask, budgetRungs());
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,12 +37,13 @@ struct BudgetRung {
   std::string name;    // "ideal", "+subpixels", ..., "-real_mla"
   std::string label;   // for tables and plots
   bool subpixels = false, realMla = false, coverGlass = false, colourChain = false, calibrated = false;
+  bool removal = false;  // the full chain with one effect removed (not a ladder rung)
 };
 
-// The ladder, in order, and the full chain with one effect removed.
-std::vector<BudgetRung> budgetLadder();
-std::vector<BudgetRung> budgetRemoveOne();
-// Rung names for options: InputError (key "budget_rungs") listing the valid ones otherwise.
+// The ladder, in order, then the full chain with one effect removed.
+std::vector<BudgetRung> budgetRungs();
+// Rung names for options, in budgetRungs() order: InputError (key "budget_rungs") listing the
+// valid ones for an unknown name.
 std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names);
 
 // What every rung of a run shares.
@@ -72,13 +73,12 @@ struct PoseBudget {
 
 // The rungs at one pose. `reference`, `secondReference`: linear camera RGB already scaled to
 // the display's units and exposed by `exposure` (fig11's exposeAlike); rung views are
-// multiplied by `exposure`. `rungs`: which ladder rungs to render (all by default).
+// multiplied by `exposure`. `rungs`: which rungs to render (budgetRungs() or a selection).
 // `fullChainView` (optional): the run's own reconstruction of the uncalibrated EIA (linear,
 // unexposed), reused for the full-chain rung instead of rendering it again.
 PoseBudget poseBudget(const BudgetScene& scene, const CameraModel& camera, const Image& reference,
                       const Image& secondReference, double exposure, const PixelMask& mask,
-                      const std::vector<BudgetRung>& ladder, const std::vector<BudgetRung>& removeOne,
-                      const Image* fullChainView = nullptr);
+                      const std::vector<BudgetRung>& rungs, const Image* fullChainView = nullptr);
 
 // budget.json's entry of a pose: noise floor, rungs with metrics and increments (each rung
 // against the one before; each removal against the full chain).

@@ -93,13 +93,7 @@ PoseImages exposeAlike(const Image& rec, const Image& ref, double refToCdM2, con
   return p;
 }
 
-void writeJson(const Json& j, const std::string& path) {
-  FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw std::runtime_error("cannot write " + path);
-  std::fputs(j.dump(2).c_str(), f);
-  std::fputc('\n', f);
-  std::fclose(f);
-}
+void writeJson(const Json& j, const std::string& path) { writeTextFile(path, j.dump(2) + "\n"); }
 
 std::optional<ViewPair>& sheetSlot(Fig11Views& sheet, const std::string& name) {
   if (name == "left") return sheet.left;
@@ -195,11 +189,8 @@ class Fig11Run {
     const Image second = renderReference(*in_.field.field, in_.fieldToDisplay, camera, in_.camera.sensor, rs).image;
     const Image secondExposed = scaledImage(second, refToCdM2_ * img.exposure);
     const bool fullChain = !in_.calibration && s_.mla == MlaKind::Real;
-    const auto rungs = s_.budgetRungs.empty() ? budgetLadder() : selectRungs(s_.budgetRungs);
-    std::vector<BudgetRung> ladder, remove;
-    for (const BudgetRung& r : rungs) (r.name[0] == '-' ? remove : ladder).push_back(r);
-    if (s_.budgetRungs.empty()) remove = budgetRemoveOne();
-    PoseBudget b = poseBudget(*budget_, camera, img.refExposed, secondExposed, img.exposure, mask, ladder, remove,
+    PoseBudget b = poseBudget(*budget_, camera, img.refExposed, secondExposed, img.exposure, mask,
+                              s_.budgetRungs.empty() ? budgetRungs() : selectRungs(s_.budgetRungs),
                               fullChain ? &rec : nullptr);
     b.pose = v.name;
     return b;

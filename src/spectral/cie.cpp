@@ -58,6 +58,14 @@ Vec3d integrateXYZ(F&& f) {
 }
 }  // namespace
 
+Vec3d d65WhiteXyz() {
+  static const Vec3d white = [] {
+    const Vec3d w = spectrumToXYZ(cie::D65());
+    return w / w.y;
+  }();
+  return white;
+}
+
 Vec3d spectrumToXYZ(const Spectrum& s) {
   return integrateXYZ([&](float l) { return double(s(l)); }) / cie::yIntegral();
 }

@@ -16,6 +16,9 @@ const PiecewiseLinearSpectrum& A();
 double yIntegral();
 }  // namespace cie
 
+// XYZ of D65 scaled to Y = 1: the white of the field and of CIELAB in colour comparisons.
+Vec3d d65WhiteXyz();
+
 // XYZ of an emission spectrum, normalised so that Y = integral(s * y_bar) / yIntegral().
 Vec3d spectrumToXYZ(const Spectrum& s);
 // XYZ of a reflectance under an illuminant, normalised so that a perfect white has Y = 1.

@@ -10,6 +10,7 @@
 
 #include "analysis/colour_plots.h"
 #include "core/format.h"
+#include "core/output_file.h"
 #include "display/display.h"
 #include "experiments/calibrate_run.h"
 #include "spectral/color.h"
@@ -273,10 +274,7 @@ StudyReport runColourCalibration(const StudyOptions& o) {
     metrics["variants"][vs[i].name] = variantMetrics(results[i]);
     metrics["variants"][vs[i].name]["title"] = vs[i].title;
   }
-  {
-    std::ofstream f(w.file("metrics.json"));
-    f << metrics.dump(2) << "\n";
-  }
+  writeTextFile(w.file("metrics.json"), metrics.dump(2) + "\n");
   w.section("What", "How far each stage of the simulated chain (field, panel, MLA, camera) moves a colour, which "
                     "correction brings it back, and whether that holds on colours never used in the fit, at 0° and "
                     "at ±7° horizontally and vertically (the paper's Fig. 11 poses).");

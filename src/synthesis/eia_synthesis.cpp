@@ -70,7 +70,7 @@ class DisplayRayQueries {
                     const PanelColor& color, SynthesisResult& res, std::vector<uint8_t>& hitFlag)
       : L_(L), field_(field), s_(s), oq_(oq), res_(res), hitFlag_(hitFlag),
         spectral_(field.encoding() == FieldEncoding::Spectral), colorSpace_(field.colorSpace()), spp_(s.spp),
-        xyzToDrive_(glm::mat3(color.xyzToDrive())), onPlaneTol_(float(0.5 * L.pixelMm)),
+        toDrive_(color, DriveSettings{}), onPlaneTol_(float(0.5 * L.pixelMm)),
         batchRays_(std::max<int64_t>(1, s.raysPerBatch / s.spp)), cmf_(cmfTable()) {}
 
   // Display rays a batch.
@@ -140,7 +140,7 @@ class DisplayRayQueries {
     for (size_t i = 0; i < nr; ++i) b.acc[i] = resolveRay(b0 + int64_t(i), i, b, local);
     if (!spectral_) rgbToXYZInPlace(b.acc, colorSpace_);
     for (size_t i = 0; i < nr; ++i) {
-      Vec3 d = xyzToDrive_ * b.acc[i];
+      const Vec3 d = toDrive_.native(b.acc[i]);  // exposure and gamut come once all rays are in
       float* o = &res_.drive[size_t(b0 + int64_t(i)) * 3];
       o[0] = d.x, o[1] = d.y, o[2] = d.z;
     }
@@ -189,7 +189,7 @@ class DisplayRayQueries {
   const bool spectral_;
   const std::string colorSpace_;
   const int spp_;
-  const glm::mat3 xyzToDrive_;
+  const FieldToDrive toDrive_;
   const float onPlaneTol_;
   const int64_t batchRays_;
   const CmfTable& cmf_;

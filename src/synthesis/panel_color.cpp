@@ -49,8 +49,7 @@ Vec2 PanelColor::whiteXY() const {
 Vec3d PanelColor::driveFromSpectrum(const Spectrum& s) const { return driveFromXYZ(spectrumToXYZ(s)); }
 
 Vec3d PanelColor::d65WhiteGains() const {
-  Vec3d xyz = spectrumToXYZ(cie::D65());
-  Vec3d d = driveFromXYZ(xyz / xyz.y);
+  Vec3d d = driveFromXYZ(d65WhiteXyz());
   return {1.0 / d.x, 1.0 / d.y, 1.0 / d.z};
 }
 

@@ -120,7 +120,7 @@ glm::dmat3 rgbToCameraMatrix(const Field& field, const CameraSensor& sensor) {
     e[i] = 1.0f;
     toXyz[i] = Vec3d(cs.convert(e, field.colorSpace(), "cie_xyz_d65"));
   }
-  return glm::inverse(sensor.colorFit().cameraToXyz) * toXyz;
+  return sensor.xyzToCameraRgb() * toXyz;
 }
 
 }  // namespace

@@ -26,6 +26,24 @@ std::string writeText(const std::string& name, const std::string& text) {
   return path;
 }
 
+// A file the loader must refuse: its name, its text, and part of what the error expects.
+struct BadFile {
+  const char* name;
+  std::string text;
+  const char* expected;
+};
+
+// Each file is refused with an InputError that names it and says what was expected.
+void expectRefused(const std::vector<BadFile>& bad) {
+  for (const BadFile& b : bad) {
+    SCOPED_TRACE(b.name);
+    const std::string path = writeText(b.name, b.text);
+    const InputError e = expectInputError([&] { loadCalibration(path); });
+    EXPECT_EQ(e.file(), path);
+    EXPECT_NE(e.expected().find(b.expected), std::string::npos) << e.what();
+  }
+}
+
 // The largest channel difference between the model and the LUT over a fixed set of colours
 // (some outside [0,1], where both clamp).
 double maxDifference(const ColourModel& model, const ColourFunction& lut) {
@@ -115,11 +133,7 @@ TEST(CalibrationFile, RefusesBadCubeFiles) {
   auto shorter = identityLines(), longer = identityLines();
   shorter.pop_back();
   longer.push_back("1 1 1");
-  const struct {
-    const char* name;
-    std::string text;
-    const char* expected;  // part of what the error expects
-  } bad[] = {
+  const std::vector<BadFile> bad = {
       {"malformed.cube", cube(kHeader, withLine(3, "1 1 x")), "a number"},
       {"two_numbers.cube", cube(kHeader, withLine(3, "1 1")), "three numbers"},
       {"few.cube", cube(kHeader, shorter), "8 table lines (found 7)"},
@@ -134,13 +148,7 @@ TEST(CalibrationFile, RefusesBadCubeFiles) {
       {"size0.cube", cube("LUT_3D_SIZE 0\n", {}), "2 to 256"},
       {"input_range.cube", cube("LUT_3D_SIZE 2\nLUT_3D_INPUT_RANGE 0 2\n", identityLines()), "LUT_3D_SIZE, DOMAIN"},
   };
-  for (const auto& b : bad) {
-    SCOPED_TRACE(b.name);
-    const std::string path = writeText(b.name, b.text);
-    const InputError e = expectInputError([&] { loadCalibration(path); });
-    EXPECT_EQ(e.file(), path);
-    EXPECT_NE(e.expected().find(b.expected), std::string::npos) << e.what();
-  }
+  expectRefused(bad);
 }
 
 // A valid CLF text (2-node identity LUT, optionally with a matrix) with one substitution.
@@ -156,11 +164,7 @@ std::string clfWith(const std::string& from, const std::string& to, bool matrix 
 TEST(CalibrationFile, RefusesBadClfFiles) {
   EXPECT_NO_THROW(loadCalibration(writeText("good.clf", clfWith("", "", true))));
   const std::string indexMap = "<IndexMap dim=\"2\">-1@0 2@1</IndexMap>\n        <Array";
-  const struct {
-    const char* name;
-    std::string text;
-    const char* expected;
-  } bad[] = {
+  const std::vector<BadFile> bad = {
       {"malformed.clf", clfWith("1 1 1\n", "1 1 x\n"), "a number"},
       {"few.clf", clfWith("1 1 1\n", "1 1\n"), "24 numbers"},
       {"many.clf", clfWith("1 1 1\n", "1 1 1 1\n"), "24 numbers"},
@@ -175,13 +179,7 @@ TEST(CalibrationFile, RefusesBadClfFiles) {
       {"lut1d.clf", clfWith("<LUT3D", "<LUT1D/>\n<LUT3D"), "Matrix, then one LUT3D"},
       {"xml.clf", clfWith("</LUT3D>", "</LUT>"), "well-formed XML"},
   };
-  for (const auto& b : bad) {
-    SCOPED_TRACE(b.name);
-    const std::string path = writeText(b.name, b.text);
-    const InputError e = expectInputError([&] { loadCalibration(path); });
-    EXPECT_EQ(e.file(), path);
-    EXPECT_NE(e.expected().find(b.expected), std::string::npos) << e.what();
-  }
+  expectRefused(bad);
 }
 
 }  // namespace

@@ -97,6 +97,21 @@ TEST(CliCalibrate, SmallRunExportsTheCorrectionThatEiaReads) {
   for (const char* f : {"panel_correction.cube", "panel_correction.clf", "panel_correction.ocio", "calibration.json",
                         "stages.csv", "verification.csv"})
     EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+  // The hold-out colours meet the verification grade after calibration, and never get worse
+  // than a 3D LUT's interpolation allows.
+  std::ifstream in(fs::path(out) / "calibration.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const nlohmann::json& h = j.at("holdout").at("in_gamut");
+  EXPECT_LE(h.at("de2000_mean_after").get<double>(), 1.0);
+  EXPECT_LE(h.at("de2000_max_after").get<double>(), 3.0);
+  EXPECT_LE(h.at("de2000_mean_after").get<double>(), h.at("de2000_mean_before").get<double>() + 0.05);
+  // inim eia reads the exported table and says so.
+  const std::string display = path("calibrate_display.json");
+  writeText(display, smallDisplayJson(11, 9, 9));
+  const std::string cube = (fs::path(out) / "panel_correction.cube").string();
+  const CliResult e = runInim("eia --display " + display + " --calibration " + cube + " --out " + path("cal_eia.exr"));
+  ASSERT_EQ(e.status, 0) << e.output;
+  EXPECT_NE(e.output.find("calibration: " + cube + " (3D LUT, 9 nodes per axis"), std::string::npos) << e.output;
 }
 
 TEST(CliCalibrate, BadSettingsNameTheirFlagsAndWriteNothing) {

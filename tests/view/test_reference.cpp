@@ -144,15 +144,12 @@ TEST(ReferenceRenderer, BitIdenticalOnOneAndTwoThreads) {
   EXPECT_EQ(std::memcmp(one.data.data(), two.data.data(), one.data.size() * sizeof(float)), 0);
 }
 
-// The images of the reference renderer before it became the field renderer with its own sampler
-// and film (its own loop in view/reference_renderer.cpp), hashed bit for bit: a pinhole and a
-// thin lens with natural vignetting and a dispersive pinhole (one ray per wavelength, packets
-// the field terminates), a spectral and an RGB field, through a placement.
-TEST(ReferenceRenderer, SameImagesAsBeforeTheRenderersWereUnified) {
+// The setups of the tests below: a spectral and an RGB probe field through a placement, seen by
+// a pinhole, a thin lens with natural vignetting and a dispersive prism pinhole (cam 0, 1, 2),
+// 6 samples per pixel in batches of 29.
+template <class Body>
+void forEachProbeSetup(Body body) {
   using namespace inim::render_test;
-  const uint64_t expected[2][3] = {{0xee3d3ff8c3432c4bull, 0xa3a850238d7ec7b1ull, 0x41ecfbc58163acc1ull},
-                                   {0x4a2f30f358104ecdull, 0x9b445e5ec0971b1bull, 0xc21bff50a238d704ull}};
-  const uint64_t hits[3] = {0, 92, 0};
   const ViewingPose pose{{10.0, 5.0, 250.0}, {0.0, 1.0, -2.0}, {0.0, 1.0, 0.0}};
   const SensorGeometry sensor{19, 11, 0.05};
   const Transform place = Transform::translate(Vec3d(1.0, -2.0, 3.0)) * Transform::scale(Vec3d(1.5));
@@ -168,11 +165,26 @@ TEST(ReferenceRenderer, SameImagesAsBeforeTheRenderersWereUnified) {
       s.seed = 5;
       s.progress = false;
       s.raysPerBatch = 29;
-      ViewResult r = renderReference(f, place, *m, defaultCamera().sensor, s);
-      EXPECT_EQ(hashImage(r.image), expected[rgb][cam]) << (rgb ? "RGB " : "spectral ") << m->describe();
-      EXPECT_EQ(r.stats.tracedRays, 19u * 11u * 6u * (cam == 2 ? 4u : 1u));
-      EXPECT_EQ(r.stats.emittingRays, hits[cam]);
+      body(rgb, cam, f, place, *m, s);
     }
+}
+
+// The images of the reference renderer before it became the field renderer with its own sampler
+// and film (its own loop in view/reference_renderer.cpp), hashed bit for bit: a pinhole and a
+// thin lens with natural vignetting and a dispersive pinhole (one ray per wavelength, packets
+// the field terminates), a spectral and an RGB field, through a placement.
+TEST(ReferenceRenderer, SameImagesAsBeforeTheRenderersWereUnified) {
+  const uint64_t expected[2][3] = {{0xee3d3ff8c3432c4bull, 0xa3a850238d7ec7b1ull, 0x41ecfbc58163acc1ull},
+                                   {0x4a2f30f358104ecdull, 0x9b445e5ec0971b1bull, 0xc21bff50a238d704ull}};
+  const uint64_t hits[3] = {0, 92, 0};
+  using inim::render_test::hashImage;
+  forEachProbeSetup([&](int rgb, int cam, const Field& f, const Transform& place, const CameraModel& m,
+                        const ReferenceSettings& s) {
+    ViewResult r = renderReference(f, place, m, defaultCamera().sensor, s);
+    EXPECT_EQ(hashImage(r.image), expected[rgb][cam]) << (rgb ? "RGB " : "spectral ") << m.describe();
+    EXPECT_EQ(r.stats.tracedRays, 19u * 11u * 6u * (cam == 2 ? 4u : 1u));
+    EXPECT_EQ(r.stats.emittingRays, hits[cam]);
+  });
 }
 
 // ---------------------------------------------------------------------------------------
@@ -287,41 +299,27 @@ TEST(ReferenceDepth, PlacementScaleIsAppliedToTheHit) {
 // R, G, B do not depend on whether depth is asked for: the same bits, for every camera kind of
 // the unification test above (a dispersive one included) and both field encodings.
 TEST(ReferenceDepth, ColourIsBitIdenticalWithDepthOnOrOff) {
-  using namespace inim::render_test;
-  const ViewingPose pose{{10.0, 5.0, 250.0}, {0.0, 1.0, -2.0}, {0.0, 1.0, 0.0}};
-  const SensorGeometry sensor{19, 11, 0.05};
-  const Transform place = Transform::translate(Vec3d(1.0, -2.0, 3.0)) * Transform::scale(Vec3d(1.5));
-  for (int rgb = 0; rgb < 2; ++rgb)
-    for (int cam = 0; cam < 3; ++cam) {
-      ProbeField f(rgb ? FieldEncoding::RGB : FieldEncoding::Spectral, true);
-      std::unique_ptr<CameraModel> m;
-      if (cam == 0) m = std::make_unique<PinholeCameraModel>(sensor, pose, 20.0, true);
-      if (cam == 1) m = std::make_unique<ThinLensCameraModel>(sensor, pose, 20.0, 2.8, 240.0, true);
-      if (cam == 2) m = std::make_unique<PrismPinhole>(sensor, pose);
-      ReferenceSettings s;
-      s.spp = 6;
-      s.seed = 5;
-      s.progress = false;
-      s.raysPerBatch = 29;
-      const ViewResult off = renderReference(f, place, *m, defaultCamera().sensor, s);
-      s.depth = true;
-      const ViewResult on = renderReference(f, place, *m, defaultCamera().sensor, s);
-      ASSERT_EQ(off.image.numChannels(), 3);
-      ASSERT_EQ(on.image.numChannels(), 5);
-      int differing = 0, hitPixels = 0;
-      for (int y = 0; y < sensor.heightPx; ++y)
-        for (int x = 0; x < sensor.widthPx; ++x) {
-          for (int c = 0; c < 3; ++c) {
-            const float a = off.image.at(x, y, c), b = on.image.at(x, y, c);
-            if (std::memcmp(&a, &b, sizeof(float)) != 0) ++differing;
-          }
-          if (on.image.at(x, y, 3) > 0.0f) ++hitPixels;
+  forEachProbeSetup([&](int rgb, int, const Field& f, const Transform& place, const CameraModel& m,
+                        ReferenceSettings s) {
+    const ViewResult off = renderReference(f, place, m, defaultCamera().sensor, s);
+    s.depth = true;
+    const ViewResult on = renderReference(f, place, m, defaultCamera().sensor, s);
+    ASSERT_EQ(off.image.numChannels(), 3);
+    ASSERT_EQ(on.image.numChannels(), 5);
+    int differing = 0, hitPixels = 0;
+    for (int y = 0; y < on.image.height; ++y)
+      for (int x = 0; x < on.image.width; ++x) {
+        for (int c = 0; c < 3; ++c) {
+          const float a = off.image.at(x, y, c), b = on.image.at(x, y, c);
+          if (std::memcmp(&a, &b, sizeof(float)) != 0) ++differing;
         }
-      EXPECT_EQ(differing, 0) << (rgb ? "RGB " : "spectral ") << m->describe();
-      EXPECT_EQ(on.stats.emittingRays, off.stats.emittingRays);
-      // A counts the rays the probe field answers with opacity > 0, as the stats do.
-      EXPECT_EQ(hitPixels > 0, on.stats.emittingRays > 0) << m->describe();
-    }
+        if (on.image.at(x, y, 3) > 0.0f) ++hitPixels;
+      }
+    EXPECT_EQ(differing, 0) << (rgb ? "RGB " : "spectral ") << m.describe();
+    EXPECT_EQ(on.stats.emittingRays, off.stats.emittingRays);
+    // A counts the rays the probe field answers with opacity > 0, as the stats do.
+    EXPECT_EQ(hitPixels > 0, on.stats.emittingRays > 0) << m.describe();
+  });
 }
 
 TEST(ReferenceDepth, BitIdenticalOnOneAndTwoThreads) {
