@@ -79,8 +79,9 @@ void addFig11Command(CLI::App& app) {
     };
     runFig11(o->s, observer);
     std::printf("wrote:       %s/{eia.exr,eia.png,view_*.exr|png,reference_*.exr|png,contact_sheet.png,metrics.json,"
-                "metrics.csv%s}\n", o->s.outDir.c_str(),
-                o->s.depthError ? ",depth_error_*.csv,reference_*_depth.exr,depth_error.png" : "");
+                "metrics.csv%s%s}\n", o->s.outDir.c_str(),
+                o->s.depthError ? ",depth_error_*.csv,reference_*_depth.exr,depth_error.png" : "",
+                o->s.budget ? ",budget.json,budget.csv,budget.png" : "");
   });
 }
 
