@@ -4,8 +4,9 @@
 // black matrix, lenslet borders) converge faster than with independent random numbers, and
 // unbiased, because every pixel's point set gets its own random nested scramble.
 //
-// The first five Sobol dimensions (van der Corput, then Joe & Kuo's direction numbers for
-// dimensions 2-5). Scramble seeds come from the pixel's Rng::forSample stream, so the points
+// The first eight Sobol dimensions (van der Corput, then Joe & Kuo's direction numbers for
+// dimensions 2-8): 0-4 for the view renderers' pixel jitter, lens and wavelength, 5-7 for the
+// scenes' first light sample (scene/path_random.h). Scramble seeds come from the pixel's Rng::forSample stream, so the points
 // depend on (seed, pixel, sample index) only, never on threads.
 #include <algorithm>
 #include <array>
@@ -15,8 +16,8 @@ namespace inim {
 
 class SobolSequence {
  public:
-  static constexpr int kDims = 5;
-  // The unscrambled 32-bit value of point `index` in dimension `dim` (0..4).
+  static constexpr int kDims = 8;
+  // The unscrambled 32-bit value of point `index` in dimension `dim` (0..7).
   static uint32_t value(uint32_t index, int dim) {
     const auto& v = table()[size_t(dim)];
     uint32_t x = 0;
@@ -49,11 +50,12 @@ class SobolSequence {
     static const Table t = [] {
       Table r{};
       for (int b = 0; b < 32; ++b) r[0][size_t(b)] = 1u << (31 - b);
-      // Joe & Kuo (new-joe-kuo-6.21201), dimensions 2..5: degree s, coefficients a, m_1..m_s.
-      const int s[4] = {1, 2, 3, 3};
-      const uint32_t a[4] = {0, 1, 1, 2};
-      const uint32_t m[4][3] = {{1, 0, 0}, {1, 3, 0}, {1, 3, 1}, {1, 1, 1}};
-      for (int d = 0; d < 4; ++d) {
+      // Joe & Kuo (new-joe-kuo-6.21201), dimensions 2..8: degree s, coefficients a, m_1..m_s.
+      const int s[7] = {1, 2, 3, 3, 4, 4, 5};
+      const uint32_t a[7] = {0, 1, 1, 2, 1, 4, 2};
+      const uint32_t m[7][5] = {{1, 0, 0, 0, 0}, {1, 3, 0, 0, 0}, {1, 3, 1, 0, 0}, {1, 1, 1, 0, 0},
+                                {1, 1, 3, 3, 0}, {1, 3, 5, 13, 0}, {1, 1, 5, 5, 17}};
+      for (int d = 0; d < 7; ++d) {
         auto& v = r[size_t(d + 1)];
         const int sd = s[d];
         for (int i = 0; i < sd; ++i) v[size_t(i)] = m[d][i] << (31 - i);

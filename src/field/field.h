@@ -23,6 +23,11 @@ struct FieldRay {
   float tFar = kInfinity;
   uint64_t id = 0;      // stable index (pixel or display ray) that keys the random stream
   uint32_t sample = 0;  // sample number within that id
+  // The point of the id's stratified sample set this ray uses (scene/path_random.h): rays that
+  // stand for one sample (a dispersive camera's wavelengths) share it. kSameAsSample: `sample`.
+  static constexpr uint32_t kSameAsSample = 0xFFFFFFFFu;
+  uint32_t stratum = kSameAsSample;
+  uint32_t stratumIndex() const { return stratum == kSameAsSample ? sample : stratum; }
 };
 
 struct FieldSample {

@@ -26,7 +26,7 @@ class TileRenderer {
                const FieldRenderSettings& settings)
       : field_(field), camera_(camera), sampler_(sampler), film_(film), settings_(settings),
         spectral_(field.encoding() == FieldEncoding::Spectral),
-        dispersive_(camera.isDispersive()),
+        dispersive_(settings.traceDispersion && camera.isDispersive()),
         raysPerSample_(dispersive_ ? kNumWavelengths : 1) {}
 
   int raysPerSample() const { return raysPerSample_; }
@@ -90,7 +90,7 @@ class TileRenderer {
     Ray r;
     const float w = camera_.generateRay(position, s.lens, dispersive_ ? wl[0] : 550.0f, r);
     if (!(w > 0.0f)) return;
-    FieldRay fr{r.o, r.d, 0.0f, kInfinity, pixel, uint32_t(si * raysPerSample_ + k)};
+    FieldRay fr{r.o, r.d, 0.0f, kInfinity, pixel, uint32_t(si * raysPerSample_ + k), uint32_t(si)};
     if (settings_.cameraToField) {
       const Point3d o = settings_.cameraToField->point(Point3d(r.o));
       const Vec3d d = settings_.cameraToField->vector(Vec3d(r.d));

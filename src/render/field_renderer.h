@@ -11,8 +11,11 @@
 // weighted 1/4 (unbiased, and as little colour noise as one ray carrying 4 wavelengths);
 // otherwise one ray carries the 4 wavelengths.
 //
-// Ray ids are pixel indices (y * width + x) and ray samples sample * raysPerSample + k, so the
-// field's random streams, and the image, are the same for any thread count and batch size.
+// Ray ids are pixel indices (y * width + x) and ray samples k * spp + sample (k: the packet's
+// rotation, 0 when not dispersive), so the field's random streams, and the image, are the same
+// for any thread count and batch size. That order gives each rotation (each hero wavelength) an
+// aligned block of sample numbers, which fields stratify over (scene/path_random.h): numbers
+// interleaved by k would give each hero wavelength a strided, badly stratified subset.
 #include <cstdint>
 #include <optional>
 
@@ -33,6 +36,9 @@ struct FieldRenderSettings {
   const char* progressLabel = "render";
   // From the camera's frame to the field's; none: camera rays go to the field unchanged.
   std::optional<Transform> cameraToField;
+  // False: a dispersive camera's rays are traced at 550 nm, each carrying the whole packet (for
+  // a lens whose colour spread is far below a pixel: camera/chromatic_spread.h).
+  bool traceDispersion = true;
 };
 
 struct FieldRenderStats {

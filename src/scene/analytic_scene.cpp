@@ -106,7 +106,7 @@ FieldSample AnalyticScene::queryOne(const FieldRay& fr, const SampledWavelengths
     out.L = SampledSpectrum(0.0f);
     return out;  // a degenerate ray sees nothing
   }
-  Rng rng = Rng::forSample(seed, fr.id, fr.sample);
+  PathRandom rng(seed, fr.id, fr.sample, fr.stratumIndex());
   SampledWavelengths lambda = lambda0;
   float t;
   SampledSpectrum L = integrator_->Li(ray, lambda, rng, &t);
@@ -123,14 +123,15 @@ void AnalyticScene::query(std::span<const FieldRay> rays, std::span<const Sample
     throw std::invalid_argument("AnalyticScene::query: rays, lambda and out must have the same size");
   constexpr size_t kChunk = 64;
   RTCRayHit rh[kChunk];
-  RTCRay shadow[kChunk];
+  constexpr int kShadows = Integrator::kMaxDeferredShadows;
+  RTCRay shadow[kChunk * kShadows];
   Ray ray[kChunk];
   bool valid[kChunk];
   SampledWavelengths lam[kChunk];
   SampledSpectrum L[kChunk];
   float t[kChunk];
-  ShadowRequest req[kChunk];
-  uint32_t shadowOf[kChunk];
+  ShadowRequest req[kChunk * kShadows];  // ray i's at i * kShadows + light
+  uint32_t shadowOf[kChunk * kShadows];
   RTCScene scene = geometry_->embreeScene();
   // Query rays of a batch are usually neighbours (pixels, samples of a pixel): coherent.
   // Shadow rays go to different lights and points on them: measured faster as incoherent.
@@ -158,7 +159,7 @@ void AnalyticScene::query(std::span<const FieldRay> rays, std::span<const Sample
 
     unsigned ns = 0;
     for (size_t i = 0; i < n; ++i) {
-      req[i].active = false;
+      for (int k = 0; k < kShadows; ++k) req[i * kShadows + k].active = false;
       if (!valid[i]) {
         L[i] = SampledSpectrum(0.0f);
         t[i] = kInfinity;
@@ -166,26 +167,31 @@ void AnalyticScene::query(std::span<const FieldRay> rays, std::span<const Sample
         continue;
       }
       const FieldRay& fr = rays[base + i];
-      Rng rng = Rng::forSample(seed, fr.id, fr.sample);
+      PathRandom rng(seed, fr.id, fr.sample, fr.stratumIndex());
       lam[i] = lambda[base + i];
       Hit h;
       bool hit = geometry_->hitFromEmbree(ray[i], rh[i], &h);
-      L[i] = integrator_->LiFromHit(ray[i], hit, h, lam[i], rng, &t[i], &req[i]);
-      if (req[i].active) {
-        fillEmbreeRay(req[i].ray, shadowMask, &shadow[ns]);
-        shadowOf[ns++] = uint32_t(i);
-      }
+      L[i] = integrator_->LiFromHit(ray[i], hit, h, lam[i], rng, &t[i], &req[i * kShadows]);
+      for (size_t r = i * kShadows; r < (i + 1) * kShadows; ++r)
+        if (req[r].active) {
+          fillEmbreeRay(req[r].ray, shadowMask, &shadow[ns]);
+          shadowOf[ns++] = uint32_t(r);
+        }
     }
     if (ns > 0) rtcOccluded1M(scene, &shadowCtx, shadow, ns, sizeof(RTCRay));
+    // Summed per ray in light order, then added, as Integrator::Li does (same rounding).
+    SampledSpectrum direct[kChunk];
+    for (size_t i = 0; i < n; ++i) direct[i] = SampledSpectrum(0.0f);
     for (unsigned k = 0; k < ns; ++k) {
       if (shadow[k].tfar < 0.0f) continue;  // blocked
-      uint32_t i = shadowOf[k];
+      const uint32_t r = shadowOf[k], i = r / kShadows;
       // filterTransmittance is exactly 1 unless the ray may meet a filter: skip the call.
-      if (filterShadows && geometry_->mayHitFilter(req[i].ray))
-        L[i] += req[i].contribution * integrator_->filterTransmittance(req[i], lam[i]);
+      if (filterShadows && geometry_->mayHitFilter(req[r].ray))
+        direct[i] += req[r].contribution * integrator_->filterTransmittance(req[r], lam[i]);
       else
-        L[i] += req[i].contribution;
+        direct[i] += req[r].contribution;
     }
+    for (size_t i = 0; i < n; ++i) L[i] += direct[i];
     for (size_t i = 0; i < n; ++i) out[base + i] = finish(L[i], t[i], lam[i], lambda[base + i]);
   }
 }

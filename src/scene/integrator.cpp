@@ -94,13 +94,11 @@ INIM_ALWAYS_INLINE inline SampledSpectrum Integrator::evalBsdf(
 }
 
 INIM_ALWAYS_INLINE inline SampledSpectrum Integrator::sampleOneLight(
-    int light, float pmf, const Vertex& v, const SampledWavelengths& lambda, Rng& rng, bool mis,
+    int light, float pmf, const Vertex& v, const SampledWavelengths& lambda, const LightUniforms& q, bool mis,
     const SampledSpectrum& beta, ShadowRequest* deferred) const {
   LightSampleContext ctx{v.h->p, v.ns};
-  Vec2 u(rng.uniform(), rng.uniform());
-  float u3 = rng.uniform();
   LightSample ls;
-  if (!lights_.sampleInline(light, ctx, u, u3, lambda, &ls)) return SampledSpectrum(0.0f);
+  if (!lights_.sampleInline(light, ctx, q.u, q.u3, lambda, &ls)) return SampledSpectrum(0.0f);
   float bsdfPdf;
   SampledSpectrum f = evalBsdf(v, ls.wi, lambda, &bsdfPdf);
   if (f.isBlack() || ls.L.isBlack()) return SampledSpectrum(0.0f);
@@ -134,29 +132,34 @@ INIM_ALWAYS_INLINE inline SampledSpectrum Integrator::sampleOneLight(
   return req.contribution * Tr;
 }
 
-// LightSelection::All: every light, each with its own shadow ray traced here (out of line:
-// not the hot path).
+// LightSelection::All: every light, each with its own shadow ray, deferred when there is room
+// (see LiFromHit). The lights share one point of their areas' parameter square.
 SampledSpectrum Integrator::directLightAll(const Vertex& v, const SampledWavelengths& lambda,
-                                           Rng& rng, bool mis, const SampledSpectrum& beta) const {
+                                           PathRandom& rng, bool mis, const SampledSpectrum& beta,
+                                           ShadowRequest* deferred) const {
   SampledSpectrum sum(0.0f);
-  for (int i = 0; i < int(lights_.lights().size()); ++i) {
+  const LightUniforms q = rng.light();
+  const int n = int(lights_.lights().size());
+  const bool defer = deferred && n <= kMaxDeferredShadows;
+  for (int i = 0; i < n; ++i) {
     float pmf = lights_.pmf(i);
-    if (pmf > 0.0f) sum += sampleOneLight(i, pmf, v, lambda, rng, mis, beta, nullptr);
+    if (pmf > 0.0f) sum += sampleOneLight(i, pmf, v, lambda, q, mis, beta, defer ? &deferred[i] : nullptr);
   }
   return sum;
 }
 
 INIM_ALWAYS_INLINE inline SampledSpectrum Integrator::directLight(
-    const Vertex& v, const SampledWavelengths& lambda, Rng& rng, bool mis,
+    const Vertex& v, const SampledWavelengths& lambda, PathRandom& rng, bool mis,
     const SampledSpectrum& beta, ShadowRequest* deferred) const {
-  if (lights_.selection() == LightSelection::All) return directLightAll(v, lambda, rng, mis, beta);
+  if (lights_.selection() == LightSelection::All) return directLightAll(v, lambda, rng, mis, beta, deferred);
   float pmf;
-  int light = lights_.selectInline(rng.uniform(), &pmf);
+  const LightUniforms q = rng.light();
+  int light = lights_.selectInline(q.select, &pmf);
   if (light < 0) return SampledSpectrum(0.0f);
-  return sampleOneLight(light, pmf, v, lambda, rng, mis, beta, deferred);
+  return sampleOneLight(light, pmf, v, lambda, q, mis, beta, deferred);
 }
 
-SampledSpectrum Integrator::Li(const Ray& ray, SampledWavelengths& lambda, Rng& rng,
+SampledSpectrum Integrator::Li(const Ray& ray, SampledWavelengths& lambda, PathRandom& rng,
                                float* hitT) const {
   Hit h;
   bool hit = geom_.intersect(ray, &h);
@@ -164,7 +167,7 @@ SampledSpectrum Integrator::Li(const Ray& ray, SampledWavelengths& lambda, Rng& 
 }
 
 SampledSpectrum Integrator::LiFromHit(const Ray& ray0, bool didHit, const Hit& firstHit,
-                                      SampledWavelengths& lambda, Rng& rng, float* hitT,
+                                      SampledWavelengths& lambda, PathRandom& rng, float* hitT,
                                       ShadowRequest* deferred) const {
   if (settings_.type == IntegratorSettings::Type::Path)
     return liImpl<true>(ray0, didHit, firstHit, lambda, rng, hitT, deferred);
@@ -175,7 +178,7 @@ SampledSpectrum Integrator::LiFromHit(const Ray& ray0, bool didHit, const Hit& f
 // (smaller, and its helpers are inlined once).
 template <bool kPath>
 SampledSpectrum Integrator::liImpl(const Ray& ray0, bool didHit, const Hit& firstHit,
-                                   SampledWavelengths& lambda, Rng& rng, float* hitT,
+                                   SampledWavelengths& lambda, PathRandom& rng, float* hitT,
                                    ShadowRequest* deferred) const {
   constexpr bool path = kPath;
   SampledSpectrum L(0.0f), beta(1.0f);

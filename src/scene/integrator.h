@@ -11,7 +11,7 @@
 // Thin filters (thin dielectrics) are transparent to shadow rays with their transmittance
 // (coloured shadows); thick dielectrics block shadow rays (no caustics by NEE).
 #include "core/geometry.h"
-#include "core/rng.h"
+#include "scene/path_random.h"
 #include "scene/lights.h"
 #include "scene/materials.h"
 #include "scene/scene_geometry.h"
@@ -47,13 +47,16 @@ class Integrator {
   // Radiance arriving along -ray.d at ray.o from the interval (ray.tMin, ray.tMax); ray.d
   // must be unit length. `lambda` may have its secondary wavelengths terminated (dispersion).
   // *hitT is the distance to the first surface (kInfinity on a miss).
-  SampledSpectrum Li(const Ray& ray, SampledWavelengths& lambda, Rng& rng, float* hitT) const;
+  SampledSpectrum Li(const Ray& ray, SampledWavelengths& lambda, PathRandom& rng, float* hitT) const;
   // Li with the first intersection already done (`firstHit` is used iff didHit). If
-  // `deferred` is non-null, the direct integrator's single shadow ray is not traced but
-  // returned there; the caller adds its contribution when the ray is unoccluded (times
-  // filterTransmittance). Results equal Li's exactly: same arithmetic, same random numbers.
+  // `deferred` is non-null (kMaxDeferredShadows requests, all inactive), the direct integrator's
+  // shadow rays are not traced but returned there (one, or one per light with
+  // LightSelection::All and at most kMaxDeferredShadows lights); the caller adds each active
+  // one's contribution when its ray is unoccluded (times filterTransmittance). Results equal
+  // Li's exactly: same arithmetic, same random numbers.
+  static constexpr int kMaxDeferredShadows = 4;
   SampledSpectrum LiFromHit(const Ray& ray, bool didHit, const Hit& firstHit,
-                            SampledWavelengths& lambda, Rng& rng, float* hitT,
+                            SampledWavelengths& lambda, PathRandom& rng, float* hitT,
                             ShadowRequest* deferred) const;
 
   // Ray-mask bits of the shapes that block shadow rays.
@@ -72,18 +75,18 @@ class Integrator {
   struct Vertex;  // a shading point (integrator.cpp)
   // Light sampled from a non-specular vertex (NEE), MIS-weighted in path mode.
   // (or deferred: see LiFromHit; `beta` is the path throughput to fold into it).
-  SampledSpectrum directLight(const Vertex& v, const SampledWavelengths& lambda, Rng& rng,
+  SampledSpectrum directLight(const Vertex& v, const SampledWavelengths& lambda, PathRandom& rng,
                               bool mis, const SampledSpectrum& beta,
                               ShadowRequest* deferred) const;
-  SampledSpectrum directLightAll(const Vertex& v, const SampledWavelengths& lambda, Rng& rng,
-                                 bool mis, const SampledSpectrum& beta) const;
+  SampledSpectrum directLightAll(const Vertex& v, const SampledWavelengths& lambda, PathRandom& rng,
+                                 bool mis, const SampledSpectrum& beta, ShadowRequest* deferred) const;
   // LiFromHit for one integrator type (integrator.cpp).
   template <bool kPath>
   SampledSpectrum liImpl(const Ray& ray0, bool didHit, const Hit& firstHit,
-                         SampledWavelengths& lambda, Rng& rng, float* hitT,
+                         SampledWavelengths& lambda, PathRandom& rng, float* hitT,
                          ShadowRequest* deferred) const;
   SampledSpectrum sampleOneLight(int light, float pmf, const Vertex& v,
-                                 const SampledWavelengths& lambda, Rng& rng, bool mis,
+                                 const SampledWavelengths& lambda, const LightUniforms& q, bool mis,
                                  const SampledSpectrum& beta, ShadowRequest* deferred) const;
   // BSDF value times |cos theta_i|, and its sampling pdf, at a non-specular vertex.
   SampledSpectrum evalBsdf(const Vertex& v, const Vec3& wi, const SampledWavelengths& lambda,
