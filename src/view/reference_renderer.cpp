@@ -2,11 +2,13 @@
 
 #include <cmath>
 
+#include "camera/chromatic_spread.h"
 #include "core/error.h"
 #include "core/rng.h"
 #include "render/field_renderer.h"
 #include "spectral/color.h"
 #include "core/qmc.h"
+#include "view/aperture_mean.h"
 
 namespace inim {
 
@@ -26,7 +28,10 @@ class ScrambledSobolSampler final : public PixelSampler {
       const uint32_t idx = uint32_t(i);
       out[i].pixelOffset = Vec2(SobolSequence::sample(idx, 0, sc[0]), SobolSequence::sample(idx, 1, sc[1]));
       out[i].lens = Vec2(SobolSequence::sample(idx, 2, sc[2]), SobolSequence::sample(idx, 3, sc[3]));
-      out[i].wavelength = SobolSequence::sample(idx, 4, sc[4]);
+      // The packet spreads its 4 wavelengths by quarters from this (render/field_renderer.h), so
+      // only its value within [0, 1/4) matters: there the pixel's 4 x spp wavelengths are
+      // stratified at 1 / (4 spp), where points spread over [0, 1) would leave 4 spp strata only.
+      out[i].wavelength = 0.25f * SobolSequence::sample(idx, 4, sc[4]);
     }
   }
 
@@ -34,21 +39,27 @@ class ScrambledSobolSampler final : public PixelSampler {
   uint64_t seed_;
 };
 
-// Linear white-balanced camera RGB, accumulated in double.
+// Linear white-balanced camera RGB, accumulated in double: the surviving rays averaged by their
+// weights, times the pixel's mean camera weight (view/aperture_mean.h).
 class CameraRgbFilm final : public Film {
  public:
   // `rgbToCamera`: an RGB field's colours to camera RGB (unused for spectral fields).
-  CameraRgbFilm(const CameraSensor& sensor, const glm::dmat3& rgbToCamera) : sensor_(sensor), rgbToCamera_(rgbToCamera) {}
+  CameraRgbFilm(const CameraSensor& sensor, const glm::dmat3& rgbToCamera, const ApertureMeanWeight& meanWeight,
+                int width)
+      : sensor_(sensor), rgbToCamera_(rgbToCamera), meanWeight_(meanWeight), width_(uint64_t(width)) {}
   std::vector<std::string> channels() const override { return {"R", "G", "B"}; }
 
   void resolvePixel(const PixelRays& p, float* pixel) const override {
     Vec3d acc(0.0);
+    double weights = 0.0;
     for (size_t i = 0; i < p.answers.size(); ++i) {
+      weights += double(p.weights[i]);
       const Vec3d c = p.spectral ? spectralRgb(p.answers[i], p.wavelengths[i], p.heroOnly)
                                  : rgbToCamera_ * Vec3d(p.answers[i].rgb);
       if (std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) acc += double(p.weights[i]) * c;
     }
-    for (int c = 0; c < 3; ++c) pixel[c] = float(acc[c] / double(p.spp));
+    const double scale = weights > 0.0 ? meanWeightOf(p.rays.front().id) / weights : 0.0;
+    for (int c = 0; c < 3; ++c) pixel[c] = float(acc[c] * scale);
   }
 
  private:
@@ -69,8 +80,15 @@ class CameraRgbFilm final : public Film {
     return c / double(kNumWavelengths);
   }
 
+  // Ray ids are pixel indices, y * width + x (render/field_renderer.h).
+  double meanWeightOf(uint64_t pixel) const {
+    return meanWeight_.at(Vec2(float(pixel % width_) + 0.5f, float(pixel / width_) + 0.5f));
+  }
+
   const CameraSensor& sensor_;
   glm::dmat3 rgbToCamera_;
+  const ApertureMeanWeight& meanWeight_;
+  uint64_t width_;
 };
 
 // Another film's channels, then A (the fraction of the rays that hit) and Z (the mean display
@@ -129,7 +147,9 @@ ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, 
                            const CameraSensor& sensor, const ReferenceSettings& s) {
   if (s.spp < 1) throw InputError("", "spp", std::to_string(s.spp), "a whole number >= 1");
   const bool spectral = field.encoding() == FieldEncoding::Spectral;
-  const CameraRgbFilm film(sensor, spectral ? glm::dmat3(1.0) : rgbToCameraMatrix(field, sensor));
+  const ApertureMeanWeight meanWeight(camera);
+  const CameraRgbFilm film(sensor, spectral ? glm::dmat3(1.0) : rgbToCameraMatrix(field, sensor), meanWeight,
+                           camera.width());
   FieldRenderSettings fs;
   fs.spp = s.spp;
   fs.seed = s.seed;
@@ -137,6 +157,8 @@ ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, 
   fs.progress = s.progress;
   fs.progressLabel = "reference";
   fs.cameraToField = fieldToDisplay.inverse();
+  fs.traceDispersion = s.dispersion == CameraDispersion::Trace ||
+                       (s.dispersion == CameraDispersion::Auto && chromaticSpreadPx(camera) > kDispersionThresholdPx);
   const WithSurfaceDepth filmWithDepth(film, fieldToDisplay);
   const Film& used = s.depth ? static_cast<const Film&>(filmWithDepth) : film;
   FieldRender r = renderThroughCamera(field, camera, ScrambledSobolSampler(s.seed), used, fs);
@@ -146,7 +168,7 @@ ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, 
   out.stats.tracedRays = r.stats.cameraRays;
   out.stats.emittingRays = r.stats.hitRays;
   out.stats.raysPerSample = r.stats.raysPerSample;
-  out.stats.dispersive = camera.isDispersive();
+  out.stats.dispersive = fs.traceDispersion && camera.isDispersive();
   out.stats.seconds = r.stats.seconds;
   return out;
 }

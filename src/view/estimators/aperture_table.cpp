@@ -68,6 +68,16 @@ float crossing(const CameraModel& camera, Vec2 pixel, const Vec2d& a, float lamb
 
 }  // namespace
 
+double apertureWeightIntegral(const CameraModel& camera, Vec2 pixel, float lambdaNm, int grid, uint64_t& rays) {
+  Vec2d lo, hi;
+  if (!camera.apertureDomain(pixel, lo, hi)) return 0.0;
+  const int G = std::max(2, grid);
+  double total = 0.0;
+  for (const RawPoint& p : gridPoints(camera, pixel, lambdaNm, G, lo, (hi.x - lo.x) / G, (hi.y - lo.y) / G, rays))
+    total += p.w;
+  return total;
+}
+
 ApertureTable buildApertureTable(const CameraModel& camera, Vec2 pixel, float lambdaNm, int grid, uint64_t& rays,
                                  float planeZ) {
   ApertureTable table;

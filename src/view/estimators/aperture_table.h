@@ -45,4 +45,9 @@ struct ApertureTable {
 ApertureTable buildApertureTable(const CameraModel& camera, Vec2 pixel, float lambdaNm, int grid, uint64_t& rays,
                                  float planeZ = 0.0f);
 
+// The table's `total` alone (no crossings): the integral of the camera weight over the aperture,
+// i.e. the mean weight of CameraModel::generateRay over uLens at this pixel position and
+// wavelength; 0 when no ray passes.
+double apertureWeightIntegral(const CameraModel& camera, Vec2 pixel, float lambdaNm, int grid, uint64_t& rays);
+
 }  // namespace inim
