@@ -14,7 +14,6 @@ namespace inim {
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 
 std::string vecText(const Vec3d& v) { return "[" + formatNumber(v.x) + ", " + formatNumber(v.y) + ", " + formatNumber(v.z) + "]"; }
 

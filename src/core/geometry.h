@@ -15,6 +15,7 @@ using Mat3 = glm::mat3;
 using Mat4 = glm::mat4;
 
 constexpr float kPi = 3.14159265358979323846f;
+constexpr double kPiD = 3.14159265358979323846;
 constexpr float kInvPi = 0.31830988618379067154f;
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 

@@ -12,7 +12,6 @@ namespace inim {
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 double deg(double rad) { return rad * 180.0 / kPiD; }
 
 std::optional<double> convergence(double g, double P, double pEi) {

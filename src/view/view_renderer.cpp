@@ -86,12 +86,14 @@ PixelMask displayMask(const CameraModel& camera, const AreaMm& area) {
   m.height = camera.height();
   m.on.assign(size_t(m.width) * m.height, 0);
   m.source = "display area";
-  for (int y = 0; y < m.height; ++y)
-    for (int x = 0; x < m.width; ++x) {
-      Point3 p;
-      if (!centralRayOnDisplayPlane(camera, Vec2(x + 0.5f, y + 0.5f), false, p)) continue;
-      m.on[size_t(y) * m.width + x] = area.contains(p.x, p.y) ? 1 : 0;
-    }
+  parallelForRange(m.height, [&](int64_t y0, int64_t y1) {
+    for (int y = int(y0); y < int(y1); ++y)
+      for (int x = 0; x < m.width; ++x) {
+        Point3 p;
+        if (!centralRayOnDisplayPlane(camera, Vec2(x + 0.5f, y + 0.5f), false, p)) continue;
+        m.on[size_t(y) * m.width + x] = area.contains(p.x, p.y) ? 1 : 0;
+      }
+  }, nullptr, 8);
   return m;
 }
 

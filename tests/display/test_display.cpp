@@ -15,7 +15,6 @@ using namespace fixtures;
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 
 // The paper prototype with some keys replaced (a JSON patch on the top-level object).
 std::string prototypeWith(const std::string& name, const Json& patch) {
