@@ -41,5 +41,7 @@ void registerViewBenchmarks(const ViewBenchSettings& settings);
 void printViewBenchResults();
 void registerRadianceBenchmarks(const RadianceBenchSettings& settings);
 void printRadianceBenchResults();
+void registerFig11Benchmarks();
+void printFig11BenchResults();
 
 }  // namespace inim::bench

@@ -47,6 +47,7 @@ void runBenchmarks(const BenchSettings& settings) {
   bench::registerRadianceBenchmarks(settings.radiance);
   bench::registerQueryBenchmarks(settings.minTime);
   bench::registerViewBenchmarks(settings.view);
+  bench::registerFig11Benchmarks();
   // Debian builds libbenchmark without NDEBUG, so it prints a DEBUG warning; inim itself is a
   // Release build (see the header line below).
   std::string filterArg = "--benchmark_filter=" + settings.filter;
@@ -62,6 +63,7 @@ void runBenchmarks(const BenchSettings& settings) {
   printRatios(reporter.raysPerSecond);
   bench::printRadianceBenchResults();
   bench::printViewBenchResults();
+  bench::printFig11BenchResults();
 }
 
 }  // namespace inim

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <optional>
 
 #include "analysis/plot.h"
 #include "colour_chain/chain_response.h"
@@ -10,6 +12,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "view/display_model.h"
+#include "view/estimators/channel_response.h"
 #include "view/view_image.h"
 #include "view/view_renderer.h"
 
@@ -55,24 +58,92 @@ std::string skipReason(const BudgetScene& s, const BudgetRung& r) {
   return "";
 }
 
-Image renderRung(const BudgetScene& s, const CameraModel& camera, const BudgetRung& r) {
+// The display model of a rung's optics and panel.
+DisplayModel rungDisplay(const BudgetScene& s, const BudgetRung& r) {
   Display d = *s.display;
   if (!r.subpixels) d.panel.subpixels = uniformPixelLayout();
   EmitterSettings emitter;
   emitter.coverGlass = r.coverGlass;
   const Image& eia = r.calibrated ? *s.calibratedEia : *s.eia;
-  const DisplayModel dm =
-      makeDisplayModel(d, *s.layout, eia, "(EIA)", r.realMla ? MlaKind::Real : MlaKind::Ideal, 0.0, emitter);
-  ViewSettings vs = s.view;
-  vs.progress = false;
-  if (r.colourChain) return renderView(camera, s.camera->sensor, *dm.mla, *dm.panel, dm.area, vs).image;
-  const CameraSensor observer = cieObserverSensor(s.camera->sensor.geometry());
-  return observerAsCamera(renderView(camera, observer, *dm.mla, *dm.panel, dm.area, vs).image, s.camera->sensor);
+  return makeDisplayModel(d, *s.layout, eia, "(EIA)", r.realMla ? MlaKind::Real : MlaKind::Ideal, 0.0, emitter);
+}
+
+// A rung's optics and panel (what a render depends on besides the sensor).
+std::string geometryKey(const BudgetRung& r) {
+  return std::string(r.subpixels ? "s" : "u") + (r.realMla ? "r" : "i") + (r.coverGlass ? "g" : "n") + (r.calibrated ? "c" : "e");
 }
 
 bool isFullChain(const BudgetRung& r) { return r.subpixels && r.realMla && r.coverGlass && r.colourChain && !r.calibrated; }
 
+// The renders of one pose, each once: through the camera's sensor, and, for the rungs without
+// the colour chain, through the observer (by sensorSwap when exact, else rendered).
+class RungRenders {
+ public:
+  RungRenders(const BudgetScene& s, const CameraModel& camera, const Image* fullChainView)
+      : s_(s), camera_(camera), observer_(cieObserverSensor(s.camera->sensor.geometry())) {
+    if (fullChainView) cameraViews_[geometryKey(rung("full", "", true, true, true, true))] = *fullChainView;
+  }
+
+  // The rung's linear view in camera RGB, and a note when it reused another rung's render.
+  Image view(const BudgetRung& r, std::string& note) {
+    const std::string key = geometryKey(r);
+    if (r.colourChain) return cameraView(r, key);
+    if (!sensorSwapIsExact(s_.view)) {
+      const DisplayModel dm = rungDisplay(s_, r);
+      return observerAsCamera(render(dm, observer_), s_.camera->sensor);
+    }
+    note = "the render of the same optics through the camera, seen by the observer (exact 3 x 3)";
+    const Image& cam = cameraView(r, key);
+    if (!toObserver_) toObserver_ = sensorSwap(*rungDisplay(s_, r).panel, s_.camera->sensor, observer_);
+    return observerAsCamera(transformedRgb(cam, *toObserver_), s_.camera->sensor);
+  }
+
+ private:
+  const Image& cameraView(const BudgetRung& r, const std::string& key) {
+    auto it = cameraViews_.find(key);
+    if (it != cameraViews_.end()) return it->second;
+    const DisplayModel dm = rungDisplay(s_, r);
+    return cameraViews_[key] = render(dm, s_.camera->sensor);
+  }
+
+  Image render(const DisplayModel& dm, const CameraSensor& sensor) const {
+    ViewSettings vs = s_.view;
+    vs.progress = false;
+    return renderView(camera_, sensor, *dm.mla, *dm.panel, dm.area, vs).image;
+  }
+
+  const BudgetScene& s_;
+  const CameraModel& camera_;
+  const CameraSensor observer_;
+  std::map<std::string, Image> cameraViews_;
+  std::optional<glm::dmat3> toObserver_;
+};
+
 }  // namespace
+
+// With one wavelength node per primary the node wavelengths depend on the panel only, so the
+// sensor enters through ChannelResponse::channelRgb alone.
+bool sensorSwapIsExact(const ViewSettings& vs) {
+  return vs.panelEstimator == PanelEstimator::Quadrature && vs.wavelengthNodes == 1;
+}
+
+glm::dmat3 sensorSwap(const PanelEmitter& panel, const CameraSensor& from, const CameraSensor& to) {
+  const ChannelResponse a(from, panel, false, SpectralSampling::Primaries), b(to, panel, false, SpectralSampling::Primaries);
+  glm::dmat3 A, B;
+  for (int c = 0; c < kNumPrimaries; ++c) A[c] = a.channelRgb(c), B[c] = b.channelRgb(c);
+  return B * glm::inverse(A);
+}
+
+Image transformedRgb(const Image& img, const glm::dmat3& m) {
+  Image out = img;
+  const int n = out.numChannels();
+  for (size_t i = 0; i < size_t(out.width) * size_t(out.height); ++i) {
+    float* p = &out.data[i * size_t(n)];
+    const Vec3d v = m * Vec3d(p[0], p[1], p[2]);
+    p[0] = float(v.x), p[1] = float(v.y), p[2] = float(v.z);
+  }
+  return out;
+}
 
 std::vector<BudgetRung> budgetRungs() {
   return {rung("ideal", "ideal display", false, false, false, false),
@@ -103,7 +174,8 @@ std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names) {
 
 PoseBudget poseBudget(const BudgetScene& s, const CameraModel& camera, const Image& reference,
                       const Image& secondReference, double exposure, const PixelMask& mask,
-                      const std::vector<BudgetRung>& rungs, const Image* fullChainView) {
+                      const std::vector<BudgetRung>& rungs, const Image* fullChainView,
+                      const Image* bandLimitedReference) {
   const CameraSensor& sensor = s.camera->sensor;
   const Image refSrgb = cameraRgbToSrgb(reference, sensor);
   CompareOptions copt;
@@ -111,15 +183,30 @@ PoseBudget poseBudget(const BudgetScene& s, const CameraModel& camera, const Ima
   PoseBudget b;
   b.noiseFloor = compareImages(refSrgb, cameraRgbToSrgb(secondReference, sensor), copt, &mask, "reference",
                                "reference (another seed)");
+  std::optional<Image> limitedSrgb;
+  if (bandLimitedReference) limitedSrgb = cameraRgbToSrgb(*bandLimitedReference, sensor);
+  RungRenders renders(s, camera, fullChainView);
+  std::map<std::string, RungResult> sameConfiguration;  // "+cover_glass" is "-colour_chain"
   auto run = [&](const BudgetRung& r) {
-    RungResult out{r, false, "", {}, 0.0, {}};
+    RungResult out;
+    out.rung = r;
     out.note = skipReason(s, r);
     if (!out.note.empty()) return out.skipped = true, out;
     const auto t0 = std::chrono::steady_clock::now();
-    const Image view = fullChainView && isFullChain(r) ? *fullChainView : renderRung(s, camera, r);
+    const std::string key = geometryKey(r) + (r.colourChain ? "+" : "-");
+    if (auto it = sameConfiguration.find(key); it != sameConfiguration.end()) {
+      out = it->second;
+      out.rung = r;
+      out.seconds = 0.0;
+      return out;
+    }
+    const Image view = renders.view(r, out.note);
     out.srgb = cameraRgbToSrgb(scaledImage(view, exposure), sensor);
     out.metrics = compareImages(refSrgb, out.srgb, copt, &mask, "reference", r.name);
+    if (limitedSrgb)
+      out.bandLimited = compareImages(*limitedSrgb, out.srgb, copt, &mask, "band-limited reference", r.name);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    sameConfiguration[key] = out;
     return out;
   };
   for (const BudgetRung& r : rungs) (r.removal ? b.removeOne : b.ladder).push_back(run(r));
@@ -132,7 +219,9 @@ Json rungJson(const RungResult& r, const RungResult* against) {
   Json j{{"rung", r.rung.name}, {"label", r.rung.label}, {"skipped", r.skipped}};
   if (r.skipped) return j["note"] = r.note, j;
   j["metrics"] = metricsJson(r.metrics);
+  if (r.bandLimited) j["metrics_band_limited"] = metricsJson(*r.bandLimited);
   j["seconds"] = r.seconds;
+  if (!r.note.empty()) j["note"] = r.note;
   if (against && !against->skipped)
     j["increment"] = {{"psnr_db", r.metrics.psnrDb - against->metrics.psnrDb},
                       {"ssim", r.metrics.ssim - against->metrics.ssim},
@@ -164,21 +253,25 @@ Json poseBudgetJson(const PoseBudget& b) {
 }
 
 std::vector<std::string> budgetCsvHeader() {
-  return {"pose", "kind", "rung", "psnr_db", "ssim", "de2000_mean", "de2000_p95", "d_psnr_db", "d_de2000_mean", "note"};
+  return {"pose",      "kind",          "rung",          "psnr_db",
+          "ssim",      "de2000_mean",   "de2000_p95",    "d_psnr_db",
+          "d_de2000_mean", "band_limited_psnr_db", "band_limited_de2000_mean", "note"};
 }
 
 std::vector<std::vector<std::string>> budgetCsvRows(const PoseBudget& b) {
   auto f = [](double v) { return formatNumber(v, "%.4f"); };
   std::vector<std::vector<std::string>> rows;
   const ImageMetrics& n = b.noiseFloor;
-  rows.push_back({b.pose, "floor", "noise_floor", f(n.psnrDb), f(n.ssim), f(n.deltaE.mean), f(n.deltaE.p95), "", "", ""});
+  rows.push_back({b.pose, "floor", "noise_floor", f(n.psnrDb), f(n.ssim), f(n.deltaE.mean), f(n.deltaE.p95), "", "", "", "", ""});
   auto add = [&](const char* kind, const RungResult& r, const RungResult* against) {
-    if (r.skipped) return rows.push_back({b.pose, kind, r.rung.name, "", "", "", "", "", "", r.note});
+    if (r.skipped) return rows.push_back({b.pose, kind, r.rung.name, "", "", "", "", "", "", "", "", r.note});
     const ImageMetrics& m = r.metrics;
     const bool inc = against && !against->skipped;
     rows.push_back({b.pose, kind, r.rung.name, f(m.psnrDb), f(m.ssim), f(m.deltaE.mean), f(m.deltaE.p95),
                     inc ? f(m.psnrDb - against->metrics.psnrDb) : "",
-                    inc ? f(m.deltaE.mean - against->metrics.deltaE.mean) : "", ""});
+                    inc ? f(m.deltaE.mean - against->metrics.deltaE.mean) : "",
+                    r.bandLimited ? f(r.bandLimited->psnrDb) : "", r.bandLimited ? f(r.bandLimited->deltaE.mean) : "",
+                    r.note});
   };
   for (size_t i = 0; i < b.ladder.size(); ++i) add("ladder", b.ladder[i], previous(b, i));
   for (const RungResult& r : b.removeOne) add("remove", r, fullChain(b));

@@ -29,6 +29,7 @@
 #include "core/pixel_mask.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
+#include "view/panel_emitter.h"
 #include "view/view_settings.h"
 
 namespace inim {
@@ -61,6 +62,7 @@ struct RungResult {
   bool skipped = false;
   std::string note;          // why it was skipped, or what it stands for
   ImageMetrics metrics;      // against the reference
+  std::optional<ImageMetrics> bandLimited;  // against the band-limited reference, when given
   double seconds = 0.0;
   Image srgb;                // the rung's view, sRGB (for error maps)
 };
@@ -76,9 +78,20 @@ struct PoseBudget {
 // multiplied by `exposure`. `rungs`: which rungs to render (budgetRungs() or a selection).
 // `fullChainView` (optional): the run's own reconstruction of the uncalibrated EIA (linear,
 // unexposed), reused for the full-chain rung instead of rendering it again.
+// `bandLimitedReference` (optional, exposed like `reference`; analysis/band_limit.h): every rung
+// is also compared with it.
 PoseBudget poseBudget(const BudgetScene& scene, const CameraModel& camera, const Image& reference,
                       const Image& secondReference, double exposure, const PixelMask& mask,
-                      const std::vector<BudgetRung>& rungs, const Image* fullChainView = nullptr);
+                      const std::vector<BudgetRung>& rungs, const Image* fullChainView = nullptr,
+                      const Image* bandLimitedReference = nullptr);
+
+// A render's camera RGB as another sensor would have recorded it, for the quadrature estimator
+// with one wavelength node per primary (sensorSwapIsExact), where each channel's emission becomes
+// camera RGB through one fixed vector per channel: `to`'s channel matrix times the inverse of
+// `from`'s. Rungs that differ only by the colour chain share one render through it.
+bool sensorSwapIsExact(const ViewSettings& vs);
+glm::dmat3 sensorSwap(const PanelEmitter& panel, const CameraSensor& from, const CameraSensor& to);
+Image transformedRgb(const Image& img, const glm::dmat3& m);  // m on every pixel's first 3 channels
 
 // budget.json's entry of a pose: noise floor, rungs with metrics and increments (each rung
 // against the one before; each removal against the full chain).

@@ -1,5 +1,6 @@
 #include "experiments/fig11.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -7,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "analysis/band_limit.h"
 #include "analysis/contact_sheet.h"
 #include "analysis/plot.h"
 #include "calibration/calibration_file.h"
@@ -32,6 +34,7 @@ namespace {
 
 void validate(const Fig11Settings& s) {
   for (auto [v, key] : {std::pair{s.spp, "spp"}, {s.referenceSpp, "reference_spp"}, {s.eiaSpp, "eia_spp"},
+                        {s.budgetSpp, "budget_spp"},
                         {s.width, "width"}})
     if (v < 1) throw InputError("", key, std::to_string(v), "a whole number >= 1");
   if (!(s.angleDeg >= 0.0 && s.angleDeg < 60.0))
@@ -53,7 +56,10 @@ struct Inputs {
 
 Inputs loadInputs(const Fig11Settings& s) {
   Inputs in;
-  in.display = loadDisplay(displayPathOrDefault(s.displayPath));
+  in.display = s.display ? *s.display : loadDisplay(displayPathOrDefault(s.displayPath));
+  for (const std::string& p : s.poses)
+    if (p != "centre" && p != "left" && p != "right" && p != "top" && p != "bottom")
+      throw InputError("", "poses", "\"" + p + "\"", "centre, left, right, top or bottom");
   in.layout = computeLayout(in.display);
   in.field = loadField(s.fieldPath.empty() ? defaultScenePath() : s.fieldPath, "field");
   if (!s.calibrationPath.empty()) in.calibration = loadCalibration(s.calibrationPath);
@@ -131,6 +137,7 @@ class Fig11Run {
 
     ViewSettings vs;  // the estimator and aperture grid of every view tool
     vs.spp = s_.spp;
+    vs.apertureGrid = s_.apertureGrid;
     vs.seed = s_.seed;
     ViewResult rec = renderView(*camera, in_.camera.sensor, *dm_.mla, *dm_.panel, dm_.area, vs);
     v.displayInView = rec.stats.displayInView();
@@ -144,6 +151,7 @@ class Fig11Run {
     v.referenceSeconds = ref.stats.seconds;
 
     const PoseImages img = exposeAlike(rec.image, ref.image, refToCdM2_, in_.camera.sensor);
+    const Image limited = bandLimitedReference(img.refExposed, refDepth, *camera);
     writeImage(img.recExposed, out("view_" + v.name + ".exr"));
     writeImage(img.recSrgb, out("view_" + v.name + ".png"));
     writeImage(img.refExposed, out("reference_" + v.name + ".exr"));
@@ -155,13 +163,52 @@ class Fig11Run {
     v.metrics = compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference_" + v.name, "view_" + v.name);
     v.hasMetrics = true;
     record(v, img, mask);
+    const Image limitedSrgb = cameraRgbToSrgb(limited, in_.camera.sensor);
+    v.bandLimitedMetrics =
+        compareImages(limitedSrgb, img.recSrgb, copt, &mask, "band-limited reference_" + v.name, "view_" + v.name);
+    metrics[v.name]["band_limited"] = metricsJson(v.bandLimitedMetrics);
+    metrics[v.name]["band_limited"]["filter"] = bandLimitJson(*camera);
+    if (refDepth.present) {
+      const std::vector<float> de = deltaE2000Map(limitedSrgb, img.recSrgb, "srgb", "srgb");
+      v.depthBinsBandLimited = errorVsDepth(limited, img.recExposed, refDepth.z, refDepth.coverage, &mask, {}, &de);
+      metrics[v.name]["depth_error_band_limited"] = depthBinsJson(v.depthBinsBandLimited);
+    }
     depth.addPose(v.name, v.label, {img.refExposed, img.recExposed, img.refSrgb, img.recSrgb}, refDepth, mask,
                   metrics[v.name]);
-    if (budget_) budgets.push_back(poseBudgetOf(v, *camera, rec.image, img, mask));
+    if (!depth.curves().empty() && refDepth.present) v.depthBins = depth.curves().back().bins;
+    if (budget_) budgets.push_back(poseBudgetOf(v, *camera, rec.image, img, mask, limited));
     return v;
   }
 
  private:
+  // The display's sampling limit (analysis/band_limit.h) for this camera: the lenslet pitch, the
+  // panel pixel, the reconstruction gap, the camera distance and the footprint of an image pixel
+  // on the MLA plane at the image centre (from the horizontal field of view).
+  BandLimit bandLimitOf(const CameraModel& camera) const {
+    BandLimit b;
+    b.lensPitchMm = in_.layout.lensPitchMm;
+    b.eiPixelMm = in_.display.panel.pixelPitchMm;
+    b.gapMm = in_.display.reconstructionGapMm;
+    b.distanceMm = in_.distanceMm;
+    b.footprintMm = 2.0 * in_.distanceMm * std::tan(0.5 * camera.horizontalFovDeg() * kPiD / 180.0) / camera.width();
+    return b;
+  }
+
+  Json bandLimitJson(const CameraModel& camera) const {
+    const BandLimit b = bandLimitOf(camera);
+    return Json{{"kind", "gaussian, variance of the lenslet box and the EI pixel's cone at the pixel's depth"},
+                {"lens_pitch_mm", b.lensPitchMm}, {"ei_pixel_mm", b.eiPixelMm}, {"gap_mm", b.gapMm},
+                {"distance_mm", b.distanceMm}, {"footprint_mm", b.footprintMm}, {"sigma_px_at_mla", b.sigmaPx(0.0)}};
+  }
+
+  // The reference filtered to what an ideal display of this pitch can show; without depth
+  // channels every pixel is taken at the MLA plane.
+  Image bandLimitedReference(const Image& ref, const ReferenceDepth& d, const CameraModel& camera) const {
+    const size_t n = size_t(ref.width) * size_t(ref.height);
+    return bandLimited(ref, d.present ? d.z : std::vector<float>(n, 0.0f), d.present ? d.coverage : std::vector<float>(n, 0.0f),
+                       bandLimitOf(camera));
+  }
+
   // CIEDE2000 per pixel, 0 to kErrorMapMax, over the pixels that see the display.
   static Image errorMap(const PoseImages& img, const PixelMask& mask) {
     const std::vector<float> de = deltaE2000Map(img.refSrgb, img.recSrgb, "srgb", "srgb");
@@ -181,17 +228,17 @@ class Fig11Run {
   // The budget's rungs at this pose, against the same reference and a second one (another
   // seed) for the noise floor; the run's own view is the full chain when it is one.
   PoseBudget poseBudgetOf(const Fig11View& v, const CameraModel& camera, const Image& rec, const PoseImages& img,
-                          const PixelMask& mask) {
+                          const PixelMask& mask, const Image& limited) {
     ReferenceSettings rs;
     rs.spp = s_.referenceSpp;
     rs.seed = s_.seed + 1;
     rs.progress = false;
     const Image second = renderReference(*in_.field.field, in_.fieldToDisplay, camera, in_.camera.sensor, rs).image;
     const Image secondExposed = scaledImage(second, refToCdM2_ * img.exposure);
-    const bool fullChain = !in_.calibration && s_.mla == MlaKind::Real;
+    const bool fullChain = !in_.calibration && s_.mla == MlaKind::Real && s_.budgetSpp == s_.spp;
     PoseBudget b = poseBudget(*budget_, camera, img.refExposed, secondExposed, img.exposure, mask,
                               s_.budgetRungs.empty() ? budgetRungs() : selectRungs(s_.budgetRungs),
-                              fullChain ? &rec : nullptr);
+                              fullChain ? &rec : nullptr, &limited);
     b.pose = v.name;
     return b;
   }
@@ -255,7 +302,8 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
     }
     scene = BudgetScene{&in.display, &in.layout, in.calibration ? &otherEia->eia : &eia.eia,
                         !calibration ? nullptr : (in.calibration ? &eia.eia : &otherEia->eia), &in.camera, {}};
-    scene.view.spp = s.spp;
+    scene.view.spp = s.budgetSpp;
+    scene.view.apertureGrid = s.apertureGrid;
     scene.view.seed = s.seed;
   }
 
@@ -264,6 +312,7 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   writeImage(eia.eia, run.out("eia.exr"));
   writeImage(encodeForPanel(eia.eia, in.display.panel.eotf), run.out("eia.png"));
   for (const NamedPose& p : fig11Poses(s.angleDeg, in.distanceMm)) {
+    if (!s.poses.empty() && std::find(s.poses.begin(), s.poses.end(), p.name) == s.poses.end()) continue;
     result.views.push_back(run.renderPose(p));
     if (observer.viewDone) observer.viewDone(result.views.back());
     if (observer.budgetDone && run.budgets.size() > result.budgets.size()) {

@@ -5,10 +5,18 @@
 
 #include <filesystem>
 
+#include "camera/camera_config.h"
+#include "colour_chain/chain_response.h"
 #include "core/output_file.h"
+#include "core/rng.h"
+#include "display/display.h"
+#include "display/ei_layout.h"
 #include "expect_input_error.h"
 #include "experiments/fig11.h"
 #include "scratch_dir.h"
+#include "view/display_model.h"
+#include "view/view_camera.h"
+#include "view/view_renderer.h"
 
 using namespace inim;
 namespace fs = std::filesystem;
@@ -50,4 +58,36 @@ TEST(ErrorBudget, UnknownRungNamesListTheValidOnes) {
   EXPECT_EQ(e.key(), "budget_rungs");
   EXPECT_NE(e.expected().find("+real_mla"), std::string::npos);
   EXPECT_EQ(selectRungs({"-cover_glass"}).at(0).coverGlass, false);
+}
+
+// The budget shares one render between rungs that differ only by the colour chain: the
+// observer's view must be the camera's view through sensorSwap, pixel by pixel (real MLA,
+// cover glass, subpixels; random drive values so that every channel matters everywhere).
+TEST(ErrorBudget, TheObserversViewIsTheCamerasViewThroughTheSensorSwap) {
+  const Display d = loadDisplay(displayPathOrDefault(""));
+  const EiLayout layout = computeLayout(d);
+  Image eia(layout.eiaW, layout.eiaH, {"R", "G", "B"});
+  Rng rng(7, 0);
+  for (float& v : eia.data) v = rng.uniform();
+  const DisplayModel dm = makeDisplayModel(d, layout, eia, "(random)", MlaKind::Real);
+  const CameraDescription cam = loadCameraDescription("alvium-1800-u-500c");
+  ViewCameraOptions co;
+  co.width = 40;
+  const auto camera = makeViewCamera(cam, DisplayPose{}, co);
+  ViewSettings vs;
+  vs.spp = 1;
+  vs.apertureGrid = 4;
+  vs.progress = false;
+  ASSERT_TRUE(sensorSwapIsExact(vs));
+  const CameraSensor observer = cieObserverSensor(cam.sensor.geometry());
+  const Image seenByCamera = renderView(*camera, cam.sensor, *dm.mla, *dm.panel, dm.area, vs).image;
+  const Image seenByObserver = renderView(*camera, observer, *dm.mla, *dm.panel, dm.area, vs).image;
+  const Image swapped = transformedRgb(seenByCamera, sensorSwap(*dm.panel, cam.sensor, observer));
+  float peak = 0.0f;
+  for (float v : seenByObserver.data) peak = std::max(peak, std::abs(v));
+  ASSERT_GT(peak, 0.0f);
+  double worst = 0.0;
+  for (size_t i = 0; i < swapped.data.size(); ++i)
+    worst = std::max(worst, double(std::abs(swapped.data[i] - seenByObserver.data[i])));
+  EXPECT_LT(worst / peak, 1e-5);  // float accumulation only
 }
