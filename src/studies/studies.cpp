@@ -11,7 +11,7 @@ const StudyValue* StudyReport::find(const std::string& name) const {
 }
 
 std::vector<std::string> studyNames() {
-  return {"flip-onset", "image-plane", "depth-sharpness", "braiding", "telecentric", "nerf-pipeline", "colour-calibration"};
+  return {"flip-onset", "image-plane", "depth-sharpness", "braiding", "telecentric", "nerf-pipeline", "colour-calibration", "gap-tradeoff"};
 }
 
 StudyReport runStudy(const std::string& name, const StudyOptions& o) {
@@ -22,6 +22,7 @@ StudyReport runStudy(const std::string& name, const StudyOptions& o) {
   if (name == "telecentric") return runTelecentric(o);
   if (name == "nerf-pipeline") return runNerfPipeline(o);
   if (name == "colour-calibration") return runColourCalibration(o);
+  if (name == "gap-tradeoff") return runGapTradeoff(o);
   std::string names;
   for (const auto& n : studyNames()) names += (names.empty() ? "" : ", ") + n;
   throw InputError("", "study", name, "one of " + names);

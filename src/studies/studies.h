@@ -68,6 +68,12 @@ StudyReport runNerfPipeline(const StudyOptions& o);
 // on the in-gamut hold-out error at 0° after calibration (mean 1, p95 2, max 3 CIEDE2000).
 StudyReport runColourCalibration(const StudyOptions& o);
 
+// `inim study gap-tradeoff`: the panel-to-MLA gap swept around f (EIA made for each gap), inim
+// fig11 with its error budget on the default scene and a depth ramp: the main rungs and the error
+// against depth per gap beside psi and L; the gap with the lowest error and why. Bounds: the
+// ideal display no worse than the full chain beyond the noise floor, at every gap.
+StudyReport runGapTradeoff(const StudyOptions& o);
+
 // Names accepted by runStudy, in order.
 std::vector<std::string> studyNames();
 // InputError for an unknown name.

@@ -310,3 +310,24 @@ TEST(Studies, ColourCalibrationMeetsTheVerificationGrade) {
   EXPECT_TRUE(fs::exists(dir / "mismatch" / "panel_correction.cube"));
   if (!std::getenv("INIM_STUDIES_KEEP")) fs::remove_all(dir);
 }
+
+// The gap-tradeoff study in its quick form (gaps 3.3, 4 and 5 mm, 324 px, poses 0° and H +7°,
+// the default scene and the depth ramp): at every gap the ideal display is no worse than the full
+// chain beyond the noise floor; the gap inside the focal length through the glass (3.3 mm: L
+// virtual) does not give the lowest error; no run's scratch folder is left behind.
+TEST(Studies, GapTradeoffIdealDisplayIsNeverWorseThanTheFullChain) {
+  const fs::path dir = tempDir("gap");
+  StudyOptions o{dir.string(), ""};
+  o.quick = true;
+  const StudyReport r = runGapTradeoff(o);
+  ASSERT_EQ(r.values.size(), 6u);  // 2 scenes x 3 gaps
+  for (const auto& v : r.values) EXPECT_TRUE(v.pass) << v.name << " measured " << v.measured << " bound " << v.predicted;
+  EXPECT_TRUE(r.pass);
+  expectFiles(r);
+  EXPECT_FALSE(fs::exists(dir / ".gap-tradeoff-runs"));
+  std::ifstream f(dir / "report.md");
+  const std::string report((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("gives the lowest mean error"), std::string::npos);
+  EXPECT_EQ(report.find("g = 3.30 mm** gives the lowest"), std::string::npos);
+  if (!std::getenv("INIM_STUDIES_KEEP")) fs::remove_all(dir);
+}
