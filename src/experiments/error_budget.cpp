@@ -39,16 +39,10 @@ SubpixelLayout uniformPixelLayout() {
 // What the observer sees of the display, in the camera RGB the reference gives an RGB field:
 // XYZ through the inverse of the sensor's fitted camera RGB -> XYZ matrix.
 Image observerAsCamera(const Image& whiteBalancedXyz, const CameraSensor& sensor) {
-  Image out = whiteBalancedXyz;
-  const glm::dmat3 toCamera = sensor.xyzToCameraRgb();
   const Vec3d white = d65WhiteXyz();
-  const int n = out.numChannels();
-  for (size_t i = 0; i < size_t(out.width) * size_t(out.height); ++i) {
-    float* p = &out.data[i * size_t(n)];
-    const Vec3d rgb = toCamera * (Vec3d(p[0], p[1], p[2]) * white);
-    p[0] = float(rgb.x), p[1] = float(rgb.y), p[2] = float(rgb.z);
-  }
-  return out;
+  return transformedRgb(whiteBalancedXyz, sensor.xyzToCameraRgb() * glm::dmat3(glm::dvec3(white.x, 0, 0),
+                                                                               glm::dvec3(0, white.y, 0),
+                                                                               glm::dvec3(0, 0, white.z)));
 }
 
 std::string skipReason(const BudgetScene& s, const BudgetRung& r) {
@@ -245,8 +239,17 @@ const RungResult* previous(const PoseBudget& b, size_t i) {
 
 }  // namespace
 
+std::optional<bool> idealWithinFloorOfFullChain(const PoseBudget& b) {
+  const RungResult* full = fullChain(b);
+  for (const RungResult& r : b.ladder)
+    if (r.rung.name == "ideal" && !r.skipped && full)
+      return r.metrics.deltaE.mean <= full->metrics.deltaE.mean + b.noiseFloor.deltaE.mean;
+  return std::nullopt;
+}
+
 Json poseBudgetJson(const PoseBudget& b) {
   Json j{{"noise_floor", metricsJson(b.noiseFloor)}, {"ladder", Json::array()}, {"remove_one", Json::array()}};
+  if (const auto ok = idealWithinFloorOfFullChain(b)) j["ideal_within_noise_floor_of_full_chain"] = *ok;
   for (size_t i = 0; i < b.ladder.size(); ++i) j["ladder"].push_back(rungJson(b.ladder[i], previous(b, i)));
   for (const RungResult& r : b.removeOne) j["remove_one"].push_back(rungJson(r, fullChain(b)));
   return j;

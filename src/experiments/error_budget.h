@@ -93,6 +93,10 @@ bool sensorSwapIsExact(const ViewSettings& vs);
 glm::dmat3 sensorSwap(const PanelEmitter& panel, const CameraSensor& from, const CameraSensor& to);
 Image transformedRgb(const Image& img, const glm::dmat3& m);  // m on every pixel's first 3 channels
 
+// Physics' one ordering: the ideal display no worse than the full chain beyond the noise floor
+// (mean CIEDE2000). nullopt when either rung was not run.
+std::optional<bool> idealWithinFloorOfFullChain(const PoseBudget& b);
+
 // budget.json's entry of a pose: noise floor, rungs with metrics and increments (each rung
 // against the one before; each removal against the full chain).
 Json poseBudgetJson(const PoseBudget& b);

@@ -45,6 +45,8 @@ TEST(ErrorBudget, IdealDisplayIsNeverWorseThanTheFullChainBeyondTheNoiseFloor) {
     EXPECT_GT(floor, 0.0) << b.pose;
     EXPECT_LT(floor, full.metrics.deltaE.mean) << b.pose;
     EXPECT_LE(ideal.metrics.deltaE.mean, full.metrics.deltaE.mean + floor) << b.pose;
+    ASSERT_TRUE(idealWithinFloorOfFullChain(b).has_value());
+    EXPECT_TRUE(*idealWithinFloorOfFullChain(b)) << b.pose;
     EXPECT_TRUE(calibrated.skipped);
     EXPECT_NE(calibrated.note.find("calibration"), std::string::npos);
     ASSERT_EQ(b.removeOne.size(), 1u);
