@@ -69,9 +69,10 @@ StudyReport runNerfPipeline(const StudyOptions& o);
 StudyReport runColourCalibration(const StudyOptions& o);
 
 // `inim study gap-tradeoff`: the panel-to-MLA gap swept around f (EIA made for each gap), inim
-// fig11 with its error budget on the default scene and a depth ramp: the main rungs and the error
-// against depth per gap beside psi and L; the gap with the lowest error and why. Bounds: the
-// ideal display no worse than the full chain beyond the noise floor, at every gap.
+// fig11 with its error budget on the default scene and a depth ramp (parallel and toed-in layout):
+// the main rungs and the error against depth per gap beside psi and L; the gap with the lowest
+// error and why. Bounds: the ideal display no worse than the full chain beyond the noise floor, at
+// every gap; the toed-in ramp's error lower near L than far from it.
 StudyReport runGapTradeoff(const StudyOptions& o);
 
 // Names accepted by runStudy, in order.
