@@ -4,7 +4,6 @@
 // EIA was made with (src/view/reference_renderer.h). Both run in src/experiments/camera_run.h.
 #include <chrono>
 #include <cstdio>
-#include <map>
 #include <memory>
 #include <string>
 
@@ -166,7 +165,7 @@ void addReferenceCommand(CLI::App& app) {
     CameraPoseOpts cam;
     std::string scene, run, display;
     PlacementArgs place;
-    CameraDispersion dispersion = CameraDispersion::Auto;
+    std::string dispersion = "auto";
   };
   auto o = std::make_shared<Opts>();
   auto* cmd = app.add_subcommand(
@@ -182,13 +181,15 @@ void addReferenceCommand(CLI::App& app) {
   cmd->add_option("--camera-dispersion", o->dispersion,
                   "auto (trace the camera lens per wavelength only when it spreads a point's colours over more "
                   "than 0.25 px), trace, or ignore (rays at 550 nm carry every wavelength)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, CameraDispersion>{
-          {"auto", CameraDispersion::Auto}, {"trace", CameraDispersion::Trace}, {"ignore", CameraDispersion::Ignore}}));
+      ->check(CLI::IsMember({"auto", "trace", "ignore"}))
+      ->capture_default_str();
   addRunOptions(cmd, o->cam.run, [o] {
     const auto t0 = std::chrono::steady_clock::now();
     const RunFile run = o->run.empty() ? RunFile{} : loadRunFile(o->run);
     ReferenceRunSettings s;
-    s.reference.dispersion = o->dispersion;
+    s.reference.dispersion = o->dispersion == "trace"    ? CameraDispersion::Trace
+                             : o->dispersion == "ignore" ? CameraDispersion::Ignore
+                                                         : CameraDispersion::Auto;
     s.camera = o->cam.settings();
     s.fieldPath = !o->scene.empty() ? o->scene : run.scene.value_or("");
     s.placement = run.placement;

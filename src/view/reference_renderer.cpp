@@ -16,7 +16,7 @@ namespace {
 
 constexpr uint64_t kScrambleStream = 0xFFFFFFFFFFFFull;
 
-// Owen-scrambled Sobol points, a scramble per pixel from its own Rng stream (view/qmc.h).
+// Owen-scrambled Sobol points, a scramble per pixel from its own Rng stream (core/qmc.h).
 class ScrambledSobolSampler final : public PixelSampler {
  public:
   explicit ScrambledSobolSampler(uint64_t seed) : seed_(seed) {}

@@ -173,4 +173,10 @@ TEST(CliReference, BadInput) {
                  {"--scale"}, {out});
   expectBadInput("reference --scene " + path("nope.json") + " --out " + out + " --camera-model pinhole --width 16",
                  {"nope.json"}, {out});
+  // A parse error (CLI11's message): exit 2, the option and the value named, nothing written.
+  const CliResult r = runInim("reference --camera-dispersion sometimes --out " + out + " --width 16");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--camera-dispersion"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("sometimes"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
 }
