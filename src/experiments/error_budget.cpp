@@ -88,6 +88,7 @@ class RungRenders {
     }
     note = "the render of the same optics through the camera, seen by the observer (exact 3 x 3)";
     const Image& cam = cameraView(r, key);
+    // The matrix depends on the panel's primaries only (any rung's emitter gives it).
     if (!toObserver_) toObserver_ = sensorSwap(*rungDisplay(s_, r).panel, s_.camera->sensor, observer_);
     return observerAsCamera(transformedRgb(cam, *toObserver_), s_.camera->sensor);
   }
@@ -97,6 +98,7 @@ class RungRenders {
     auto it = cameraViews_.find(key);
     if (it != cameraViews_.end()) return it->second;
     const DisplayModel dm = rungDisplay(s_, r);
+    if (!toObserver_) toObserver_ = sensorSwap(*dm.panel, s_.camera->sensor, observer_);
     return cameraViews_[key] = render(dm, s_.camera->sensor);
   }
 

@@ -57,8 +57,9 @@ struct Inputs {
 Inputs loadInputs(const Fig11Settings& s) {
   Inputs in;
   in.display = s.display ? *s.display : loadDisplay(displayPathOrDefault(s.displayPath));
+  const std::vector<NamedPose> all = fig11Poses(s.angleDeg, 350.0);  // the names only
   for (const std::string& p : s.poses)
-    if (p != "centre" && p != "left" && p != "right" && p != "top" && p != "bottom")
+    if (std::none_of(all.begin(), all.end(), [&](const NamedPose& n) { return n.name == p; }))
       throw InputError("", "poses", "\"" + p + "\"", "centre, left, right, top or bottom");
   in.layout = computeLayout(in.display);
   in.field = loadField(s.fieldPath.empty() ? defaultScenePath() : s.fieldPath, "field");
@@ -163,24 +164,31 @@ class Fig11Run {
     v.metrics = compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference_" + v.name, "view_" + v.name);
     v.hasMetrics = true;
     record(v, img, mask);
-    const Image limitedSrgb = cameraRgbToSrgb(limited, in_.camera.sensor);
-    v.bandLimitedMetrics =
-        compareImages(limitedSrgb, img.recSrgb, copt, &mask, "band-limited reference_" + v.name, "view_" + v.name);
-    metrics[v.name]["band_limited"] = metricsJson(v.bandLimitedMetrics);
-    metrics[v.name]["band_limited"]["filter"] = bandLimitJson(*camera);
-    if (refDepth.present) {
-      const std::vector<float> de = deltaE2000Map(limitedSrgb, img.recSrgb, "srgb", "srgb");
-      v.depthBinsBandLimited = errorVsDepth(limited, img.recExposed, refDepth.z, refDepth.coverage, &mask, {}, &de);
-      metrics[v.name]["depth_error_band_limited"] = depthBinsJson(v.depthBinsBandLimited);
-    }
-    depth.addPose(v.name, v.label, {img.refExposed, img.recExposed, img.refSrgb, img.recSrgb}, refDepth, mask,
-                  metrics[v.name]);
-    if (!depth.curves().empty() && refDepth.present) v.depthBins = depth.curves().back().bins;
+    compareWithBandLimited(v, img, limited, refDepth, mask, *camera);
+    v.depthBins = depth.addPose(v.name, v.label, {img.refExposed, img.recExposed, img.refSrgb, img.recSrgb}, refDepth,
+                                mask, metrics[v.name]);
     if (budget_) budgets.push_back(poseBudgetOf(v, *camera, rec.image, img, mask, limited));
     return v;
   }
 
  private:
+  // The view against the band-limited reference: metrics, and error against depth.
+  void compareWithBandLimited(Fig11View& v, const PoseImages& img, const Image& limited, const ReferenceDepth& depth,
+                              const PixelMask& mask, const CameraModel& camera) {
+    CompareOptions copt;
+    copt.spaceA = copt.spaceB = "srgb";
+    const Image limitedSrgb = cameraRgbToSrgb(limited, in_.camera.sensor);
+    v.bandLimitedMetrics =
+        compareImages(limitedSrgb, img.recSrgb, copt, &mask, "band-limited reference_" + v.name, "view_" + v.name);
+    Json& m = metrics[v.name];
+    m["band_limited"] = metricsJson(v.bandLimitedMetrics);
+    m["band_limited"]["filter"] = bandLimitJson(camera);
+    if (!depth.present) return;
+    const std::vector<float> de = deltaE2000Map(limitedSrgb, img.recSrgb, "srgb", "srgb");
+    v.depthBinsBandLimited = errorVsDepth(limited, img.recExposed, depth.z, depth.coverage, &mask, {}, &de);
+    m["depth_error_band_limited"] = depthBinsJson(v.depthBinsBandLimited);
+  }
+
   // The display's sampling limit (analysis/band_limit.h) for this camera: the lenslet pitch, the
   // panel pixel, the reconstruction gap, the camera distance and the footprint of an image pixel
   // on the MLA plane at the image centre (from the horizontal field of view).

@@ -47,9 +47,10 @@ DepthMarks depthMarksFor(const Display& display) {
   return m;
 }
 
-void Fig11DepthError::addPose(const std::string& name, const std::string& label, const Fig11PoseImages& img,
-                              const ReferenceDepth& depth, const PixelMask& mask, Json& poseMetrics) {
-  if (!depth.present) return;
+std::vector<DepthBin> Fig11DepthError::addPose(const std::string& name, const std::string& label,
+                                               const Fig11PoseImages& img, const ReferenceDepth& depth,
+                                               const PixelMask& mask, Json& poseMetrics) {
+  if (!depth.present) return {};
   // CIEDE2000 of the sRGB images, as fig11's metrics compare them.
   const std::vector<float> de = deltaE2000Map(img.refSrgb, img.recSrgb, "srgb", "srgb");
   std::vector<DepthBin> bins = errorVsDepth(img.refLinear, img.recLinear, depth.z, depth.coverage, &mask, {}, &de);
@@ -61,7 +62,8 @@ void Fig11DepthError::addPose(const std::string& name, const std::string& label,
     planes.data[2 * i + 1] = depth.z[i];
   }
   writeImage(planes, out("reference_" + name + "_depth.exr"));
-  curves_.push_back({label, std::move(bins)});
+  curves_.push_back({label, bins});
+  return bins;
 }
 
 void Fig11DepthError::writeFigure(const Display& display) {

@@ -52,9 +52,9 @@ class Fig11DepthError {
  public:
   Fig11DepthError(OutputSet& outputs, std::filesystem::path dir) : outputs_(outputs), dir_(std::move(dir)) {}
 
-  // Bins the pose's error (default binning), writes its CSV and depth EXR, and sets
-  // poseMetrics["depth_error"]. Nothing when `depth` is not present.
-  void addPose(const std::string& name, const std::string& label, const Fig11PoseImages& img,
+  // Bins the pose's error (default binning), writes its CSV and depth EXR, sets
+  // poseMetrics["depth_error"] and returns the bins. Nothing (empty) when `depth` is not present.
+  std::vector<DepthBin> addPose(const std::string& name, const std::string& label, const Fig11PoseImages& img,
                const ReferenceDepth& depth, const PixelMask& mask, Json& poseMetrics);
   // depth_error.png, a curve per pose added; nothing when none was.
   void writeFigure(const Display& display);

@@ -29,7 +29,14 @@ using namespace study_detail;
 
 namespace {
 
-const std::vector<std::string> kMainRungs = {"ideal", "+subpixels", "+real_mla", "+cover_glass", "+colour_chain"};
+// The ladder up to the full chain (no calibration, no removals).
+std::vector<std::string> mainRungNames() {
+  std::vector<std::string> names;
+  for (const BudgetRung& r : budgetRungs())
+    if (!r.removal && !r.calibrated) names.push_back(r.name);
+  return names;
+}
+const std::vector<std::string> kMainRungs = mainRungNames();
 
 struct GapRun {
   double gapMm = 0.0;

@@ -44,6 +44,10 @@ TEST(Fig11, BadSettingsAreNamedBeforeAnyOutput) {
   EXPECT_EQ(keyOf(b), "width");
   b = s, b.angleDeg = 60.0;
   EXPECT_EQ(keyOf(b), "angle_deg");
+  b = s, b.poses = {"centre", "sideways"};
+  EXPECT_EQ(keyOf(b), "poses");
+  b = s, b.budgetSpp = 0;
+  EXPECT_EQ(keyOf(b), "budget_spp");
   b = s, b.fieldPath = "scene.obj";
   EXPECT_EQ(keyOf(b), "field");
   b = s, b.calibrationPath = "panel.3dl";
