@@ -82,12 +82,7 @@ void addFig11Command(CLI::App& app) {
                   v.referenceSeconds);
     };
     observer.budgetDone = [](const PoseBudget& b) {
-      std::printf("  budget %-7s noise floor dE %.3f;", b.pose.c_str(), b.noiseFloor.deltaE.mean);
-      for (const RungResult& r : b.ladder)
-        if (!r.skipped) std::printf(" %s %.3f;", r.rung.name.c_str(), r.metrics.deltaE.mean);
-      if (const auto ok = idealWithinFloorOfFullChain(b))
-        std::printf(" ideal <= full + floor: %s", *ok ? "yes" : "NO");
-      std::printf("\n");
+      std::printf("  budget %-7s %s\n", b.pose.c_str(), budgetLine(b).c_str());
       std::fflush(stdout);
     };
     runFig11(o->s, observer);

@@ -9,7 +9,9 @@
 
 #include "cli/commands.h"
 #include "cli/options.h"
+#include "core/format.h"
 #include "experiments/camera_run.h"
+#include "experiments/view_reference.h"
 
 namespace inim::cli {
 
@@ -63,7 +65,19 @@ void addCameraPoseOptions(CLI::App* cmd, CameraPoseOpts& o) {
   cmd->add_flag("--quiet", o.quiet, "Print nothing but warnings");
 }
 
+// `inim view --reference`: the scene, its placement and the budget's settings.
+struct ViewReferenceOpts {
+  bool on = false, noBudget = false;
+  std::string scene, run, budgetCalibration;
+  PlacementArgs place;
+  double eiaExposure = 0.0;
+  int referenceSpp = ViewReferenceSettings{}.referenceSpp, budgetSpp = ViewReferenceSettings{}.budgetSpp;
+  std::vector<std::string> budgetRungs;
+  CLI::Option* eiaExposureOpt = nullptr;
+};
+
 struct ViewOpts {
+  ViewReferenceOpts ref;
   CameraPoseOpts cam;
   DisplayArgs display;
   std::string eia, mla = "real", spectral = "primaries", estimator = "auto";
@@ -87,8 +101,7 @@ ViewSettings viewSettings(const ViewOpts& o) {
   return vs;
 }
 
-void runViewCommand(const ViewOpts& o) {
-  const auto t0 = std::chrono::steady_clock::now();
+ViewRunSettings viewRunSettings(const ViewOpts& o) {
   ViewRunSettings s;
   s.camera = o.cam.settings();
   s.displayPath = o.display.display;
@@ -100,19 +113,95 @@ void runViewCommand(const ViewOpts& o) {
   s.emitter.cosExponent = o.cosN;
   s.emitter.coverGlass = !o.noCoverGlass;
   s.view = viewSettings(o);
-  const ViewRunResult r = runView(s, [&](const ViewRunResult& v) {
-    if (o.cam.quiet) return;
-    std::printf("%s", loadedText(s, v).c_str());
-    std::fflush(stdout);
-  });
+  return s;
+}
+
+ViewReferenceSettings viewReferenceSettings(const ViewReferenceOpts& o) {
+  const RunFile run = o.run.empty() ? RunFile{} : loadRunFile(o.run);
+  ViewReferenceSettings rs;
+  rs.fieldPath = !o.scene.empty() ? o.scene : run.scene.value_or("");
+  rs.placement = run.placement;
+  rs.placementOverride = placementOverride(o.place);
+  if (o.eiaExposureOpt->count()) rs.eiaExposure = o.eiaExposure;
+  rs.referenceSpp = o.referenceSpp;
+  rs.budget = !o.noBudget;
+  rs.budgetRungs = o.budgetRungs;
+  rs.budgetCalibrationPath = o.budgetCalibration;
+  rs.budgetSpp = o.budgetSpp;
+  return rs;
+}
+
+void warnIfOutOfView(const ViewRunResult& r) {
   if (!r.render.stats.displayInView())
     std::fprintf(stderr,
                  "inim: warning: the display is out of the camera's view (%s): no camera ray reaches its active "
                  "area; the image shows only the background\n",
                  r.camera.pose.describe().c_str());
+}
+
+// The comparison's lines: metrics against the reference and the band-limited one, the budget.
+void printComparison(const ViewReferenceResult& r) {
+  std::printf("reference:   %s; placement %s; EIA exposure %s (%s); %.2f s\n", r.fieldPath.c_str(),
+              r.placement.describe().c_str(), formatNumber(r.eiaExposure).c_str(),
+              r.eiaExposureFromHeader ? "from its header" : "given", r.referenceSeconds);
+  if (!r.hasMetrics) {
+    std::fprintf(stderr, "inim: warning: no pixel sees the display; no metrics\n");
+    return;
+  }
+  for (const auto& [what, m] : {std::pair{"against:     reference", &r.metrics},
+                                {"             band-limited", &r.bandLimitedMetrics}})
+    std::printf("%s: PSNR %s dB, SSIM %.4f, CIEDE2000 mean %.3f, p95 %.3f\n", what, formatPsnr(m->psnrDb).c_str(),
+                m->ssim, m->deltaE.mean, m->deltaE.p95);
+  if (r.budget) std::printf("budget:      %s\n", budgetLine(*r.budget).c_str());
+}
+
+void runViewCommand(const ViewOpts& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const ViewRunSettings s = viewRunSettings(o);
+  auto loaded = [&](const ViewRunResult& v) {
+    if (o.cam.quiet) return;
+    std::printf("%s", loadedText(s, v).c_str());
+    std::fflush(stdout);
+  };
+  if (o.ref.on) {
+    const ViewReferenceResult r = runViewWithReference(s, viewReferenceSettings(o.ref), loaded);
+    warnIfOutOfView(r.view);
+    if (o.cam.quiet) return;
+    std::printf("%s", summaryText(r.view, s.view, secondsSince(t0)).c_str());
+    printComparison(r);
+    std::printf("exposure:    %s (both images)\nwrote:       ", formatNumber(r.exposure).c_str());
+    for (size_t i = 0; i < r.written.size(); ++i) std::printf("%s%s", i ? ", " : "", r.written[i].c_str());
+    std::printf("\n");
+    return;
+  }
+  const ViewRunResult r = runView(s, loaded);
+  warnIfOutOfView(r);
   if (o.cam.quiet) return;
   std::printf("%s", summaryText(r, s.view, secondsSince(t0)).c_str());
   std::printf("%s", writtenText(r, o.cam.s.out).c_str());
+}
+
+void addViewReferenceOptions(CLI::App* cmd, ViewReferenceOpts& o) {
+  cmd->add_flag("--reference", o.on,
+                "Also render the scene itself from the same pose and compare (as inim fig11 does): NAME_reference, "
+                "NAME_error.png, NAME_metrics.json and the error budget NAME_budget.json|csv|png beside --out");
+  cmd->add_option("--scene,--field", o.scene,
+                  "--reference: the EIA's scene or field (default: the run file's, else scenes/paper-fig7.json)");
+  cmd->add_option("--run", o.run, "--reference: the EIA's run file (scene, placement)");
+  addPlacementOptions(cmd, o.place);
+  o.eiaExposureOpt = cmd->add_option("--eia-exposure", o.eiaExposure,
+                                     "--reference: the EIA's drive per unit field luminance (default: its EXR "
+                                     "header, written by inim eia and inim fig11)");
+  cmd->add_option("--reference-spp", o.referenceSpp, "--reference: samples per pixel of the reference")
+      ->capture_default_str();
+  cmd->add_flag("--no-budget", o.noBudget, "--reference: compare only, without the error budget");
+  cmd->add_option("--budget-rungs", o.budgetRungs,
+                  "--reference: only these budget rungs (comma separated, as inim fig11 --budget-rungs)")
+      ->delimiter(',');
+  cmd->add_option("--budget-calibration", o.budgetCalibration,
+                  "--reference: the budget's calibration rung, a .cube or .clf from inim calibrate");
+  cmd->add_option("--budget-spp", o.budgetSpp, "--reference: strata per pixel of every budget rung")
+      ->capture_default_str();
 }
 
 }  // namespace
@@ -157,6 +246,7 @@ void addViewCommand(CLI::App& app) {
   cmd->add_flag("--no-cull", o->noCull, "Trace every tile, also those that cannot see the display");
   cmd->add_flag("--relative", o->relative, "Panel white = luminance 1 instead of its peak luminance in cd/m^2");
   addCameraPoseOptions(cmd, o->cam);
+  addViewReferenceOptions(cmd, o->ref);
   addRunOptions(cmd, o->cam.run, [o] { runViewCommand(*o); });
 }
 

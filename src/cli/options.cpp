@@ -105,6 +105,7 @@ std::string flagForSetting(const std::string& key) {
       {"poses", "--poses"}, {"field_space", "--field-space"}, {"correction", "--correction"},
       {"grid_levels", "--grid-levels"}, {"holdout", "--holdout"}, {"holdout_out_of_gamut", "--holdout-out-of-gamut"},
       {"budget_rungs", "--budget-rungs"}, {"budget_calibration", "--budget-calibration"},
+      {"budget_spp", "--budget-spp"}, {"eia_exposure", "--eia-exposure"},
       {"lut_size", "--lut-size"}, {"panel_bits", "--panel-bits"}, {"direct_checks", "--direct-checks"},
   };
   auto it = kFlags.find(key);

@@ -16,7 +16,9 @@ int Image::channelIndex(const std::string& name) const {
   return it == channels.end() ? -1 : int(it - channels.begin());
 }
 
-void writeImage(const Image& img, const std::string& path) {
+void writeImage(const Image& img, const std::string& path) { writeImage(img, path, {}); }
+
+void writeImage(const Image& img, const std::string& path, const ImageNumbers& numbers) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw std::runtime_error("cannot create image writer for " + path + ": " + OIIO::geterror());
   std::string ext = std::filesystem::path(path).extension().string();
@@ -28,6 +30,8 @@ void writeImage(const Image& img, const std::string& path) {
   int a = img.channelIndex("A");
   spec.alpha_channel = a;
   if (isExr) spec.attribute("compression", "zip");
+  for (const auto& [name, value] : numbers)
+    if (isExr) spec.attribute(name, OIIO::TypeDesc::DOUBLE, &value);
   if (!out->open(path, spec)) throw std::runtime_error("cannot open " + path + ": " + out->geterror());
   bool ok;
   if (isExr) {
@@ -41,6 +45,16 @@ void writeImage(const Image& img, const std::string& path) {
     ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
   }
   if (!ok || !out->close()) throw std::runtime_error("cannot write " + path + ": " + out->geterror());
+}
+
+std::optional<double> readImageNumber(const std::string& path, const std::string& name) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw InputError(path, "", "", "a readable image (" + OIIO::geterror() + ")");
+  const OIIO::ParamValue* p = in->spec().find_attribute(name);
+  if (!p) return std::nullopt;
+  if (p->type() == OIIO::TypeDesc::DOUBLE) return *static_cast<const double*>(p->data());
+  if (p->type() == OIIO::TypeDesc::FLOAT) return double(*static_cast<const float*>(p->data()));
+  return std::nullopt;
 }
 
 Image readImage(const std::string& path, bool rejectNonFinite) {

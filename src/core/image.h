@@ -1,6 +1,8 @@
 #pragma once
 // A float image with named channels, and reading/writing through OpenImageIO.
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace inim {
@@ -22,6 +24,12 @@ struct Image {
 // Writes EXR (float) or PNG/JPEG/TIFF (8-bit, values in [0,1] already encoded) by extension.
 // Throws std::runtime_error on failure.
 void writeImage(const Image& img, const std::string& path);
+// Named numbers kept in an EXR's header with the image (e.g. "inim:exposure", the factor an EIA
+// was made with, which `inim view --reference` needs to expose its reference alike).
+using ImageNumbers = std::vector<std::pair<std::string, double>>;
+void writeImage(const Image& img, const std::string& path, const ImageNumbers& numbers);
+// A number written so; nullopt when the file has no such header entry.
+std::optional<double> readImageNumber(const std::string& path, const std::string& name);
 // Reads any image OIIO knows. `rejectNonFinite`: throw InputError naming the file if any
 // value is NaN or Inf.
 Image readImage(const std::string& path, bool rejectNonFinite = true);

@@ -57,13 +57,16 @@ double writeExposed(const Image& cameraRgb, const CameraSetup& cs, const std::st
   return k;
 }
 
-// InputError unless `path` names an existing EXR or PNG.
+}  // namespace
+
 void checkEiaPath(const std::string& path) {
   const std::string ext = lowerExtension(path);
   if (ext != ".exr" && ext != ".png")
     throw InputError("", "eia", "\"" + path + "\"", "an EIA image: linear EXR (or encoded PNG)");
   if (!std::filesystem::exists(path)) throw InputError(path, "eia", "\"" + path + "\"", "an existing EIA image");
 }
+
+namespace {
 
 // The EIA, as drive values (a PNG is decoded through the panel's EOTF by the emitter).
 Image readEia(const std::string& path) {
@@ -77,7 +80,7 @@ Image readEia(const std::string& path) {
 
 }  // namespace
 
-ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded) {
+ViewRunResult renderViewRun(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded) {
   const auto t0 = std::chrono::steady_clock::now();
   checkEiaPath(s.eiaPath);
   ViewRunResult r;
@@ -90,15 +93,21 @@ ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const V
   const EiLayout L = applyLayoutOverride(r.display, s.layout);
   r.gapMm = s.gapMm.value_or(r.display.reconstructionGapMm);
   if (!(r.gapMm > 0.0) || !std::isfinite(r.gapMm)) throw InputError("", "gap_mm", formatNumber(r.gapMm), "a gap > 0 mm");
-  const Image eia = readEia(s.eiaPath);
-  r.eiaWidth = eia.width, r.eiaHeight = eia.height;
+  r.eia = std::make_shared<const Image>(readEia(s.eiaPath));
+  r.eiaWidth = r.eia->width, r.eiaHeight = r.eia->height;
+  r.layout = L;
   EmitterSettings es = s.emitter;
   es.encoded = lowerExtension(s.eiaPath) == ".png";
-  const DisplayModel dm = makeDisplayModel(r.display, L, eia, s.eiaPath, s.mla, r.gapMm, es);
+  const DisplayModel dm = makeDisplayModel(r.display, L, *r.eia, s.eiaPath, s.mla, r.gapMm, es);
   r.coverGlass = dm.panel->hasCoverGlass();
   if (loaded) loaded(r);
   r.loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.render = renderView(*r.camera.camera, r.camera.desc.sensor, *dm.mla, *dm.panel, dm.area, s.view);
+  return r;
+}
+
+ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded) {
+  ViewRunResult r = renderViewRun(s, loaded);
   r.exposureFactor = writeExposed(r.render.image, r.camera, s.camera.out);
   return r;
 }

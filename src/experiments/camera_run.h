@@ -63,6 +63,8 @@ struct ViewRunResult {
   double gapMm = 0.0;
   bool coverGlass = false;
   int eiaWidth = 0, eiaHeight = 0;
+  EiLayout layout;                    // the layout the EIA was made for
+  std::shared_ptr<const Image> eia;   // its drive values as read
   double loadSeconds = 0.0;
   ViewResult render;
   double exposureFactor = 1.0;
@@ -75,9 +77,15 @@ struct ViewRunResult {
 // bench).
 void applyEstimatorPolicy(ViewSettings& view, const std::string& estimator, bool sppGiven);
 
+// InputError (key eia) unless `path` names an existing EXR or PNG.
+void checkEiaPath(const std::string& path);
+
 // `loaded` (optional) is called when everything is loaded, before the render. The EIA path is
 // checked (extension, existence) before any other work.
 ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded = {});
+// The same without writing anything (exposureFactor stays 1): for runs that expose and write the
+// view with other outputs (experiments/view_reference.h).
+ViewRunResult renderViewRun(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded = {});
 // The loaded display, EIA and camera as `inim view` prints them.
 std::string loadedText(const ViewRunSettings& s, const ViewRunResult& r);
 // The render's lines as `inim view` prints them: samples and time, rays, the estimator's counts.

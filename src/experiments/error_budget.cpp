@@ -48,7 +48,7 @@ Image observerAsCamera(const Image& whiteBalancedXyz, const CameraSensor& sensor
 std::string skipReason(const BudgetScene& s, const BudgetRung& r) {
   if ((r.name == "+cover_glass" || r.name == "-cover_glass") && !s.display->panel.coverGlass)
     return "the panel has no cover glass";
-  if (r.calibrated && !s.calibratedEia) return "no calibration given (inim fig11 --budget-calibration FILE)";
+  if (r.calibrated && !s.calibratedEia) return "no calibration given (--budget-calibration FILE)";
   return "";
 }
 
@@ -59,7 +59,7 @@ DisplayModel rungDisplay(const BudgetScene& s, const BudgetRung& r) {
   EmitterSettings emitter;
   emitter.coverGlass = r.coverGlass;
   const Image& eia = r.calibrated ? *s.calibratedEia : *s.eia;
-  return makeDisplayModel(d, *s.layout, eia, "(EIA)", r.realMla ? MlaKind::Real : MlaKind::Ideal, 0.0, emitter);
+  return makeDisplayModel(d, *s.layout, eia, "(EIA)", r.realMla ? MlaKind::Real : MlaKind::Ideal, s.gapMm, emitter);
 }
 
 // A rung's optics and panel (what a render depends on besides the sensor).
@@ -240,6 +240,14 @@ const RungResult* previous(const PoseBudget& b, size_t i) {
 }
 
 }  // namespace
+
+std::string budgetLine(const PoseBudget& b) {
+  std::string s = "noise floor dE " + formatNumber(b.noiseFloor.deltaE.mean, "%.3f") + ";";
+  for (const RungResult& r : b.ladder)
+    if (!r.skipped) s += " " + r.rung.name + " " + formatNumber(r.metrics.deltaE.mean, "%.3f") + ";";
+  if (const auto ok = idealWithinFloorOfFullChain(b)) s += std::string(" ideal <= full + floor: ") + (*ok ? "yes" : "NO");
+  return s;
+}
 
 std::optional<bool> idealWithinFloorOfFullChain(const PoseBudget& b) {
   const RungResult* full = fullChain(b);

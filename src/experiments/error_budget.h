@@ -55,6 +55,7 @@ struct BudgetScene {
   const Image* calibratedEia = nullptr;  // null: the calibration rung is skipped
   const CameraDescription* camera = nullptr;
   ViewSettings view;
+  double gapMm = 0.0;  // panel to MLA; 0: the display's reconstruction gap
 };
 
 struct RungResult {
@@ -96,6 +97,10 @@ Image transformedRgb(const Image& img, const glm::dmat3& m);  // m on every pixe
 // Physics' one ordering: the ideal display no worse than the full chain beyond the noise floor
 // (mean CIEDE2000). nullopt when either rung was not run.
 std::optional<bool> idealWithinFloorOfFullChain(const PoseBudget& b);
+
+// One line for the terminal: the noise floor, each ladder rung's mean CIEDE2000 and whether the
+// ideal display is within the floor of the full chain.
+std::string budgetLine(const PoseBudget& b);
 
 // budget.json's entry of a pose: noise floor, rungs with metrics and increments (each rung
 // against the one before; each removal against the full chain).

@@ -19,7 +19,9 @@
 #include "display/display.h"
 #include "display/ei_layout.h"
 #include "experiments/fig11_depth.h"
+#include "experiments/pose_comparison.h"
 #include "fields/field_factory.h"
+#include "synthesis/eia_correction.h"
 #include "synthesis/eia_synthesis.h"
 #include "view/reference_renderer.h"
 #include "view/view_camera.h"
@@ -74,31 +76,8 @@ Inputs loadInputs(const Fig11Settings& s) {
   return in;
 }
 
-// The reconstruction and the reference of one pose, exposed alike, linear and sRGB.
 // The top of the contact sheet's error-map scale (CIEDE2000; larger errors saturate).
 constexpr double kErrorMapMax = 50.0;
-
-struct PoseImages {
-  Image recExposed, refExposed, recSrgb, refSrgb;
-  double exposure = 1.0;  // the factor on the reconstruction (display units)
-};
-
-// One exposure for both, in the same units: the EIA maps field luminance Y to drive
-// exposureUsed x Y, which the panel shows at exposureUsed x Y x peak luminance (cd/m^2), the
-// unit of the reconstruction. So the reference, scaled by that, is what an ideal display would
-// show; the exposure that suits the reference then applies to both, and what the optics lose or
-// add (Fresnel, black matrix, crosstalk) stays visible in the metrics.
-PoseImages exposeAlike(const Image& rec, const Image& ref, double refToCdM2, const CameraSensor& sensor) {
-  const Image refCdM2 = scaledImage(ref, refToCdM2);
-  const double k = exposureFactor(refCdM2, sensor, Exposure{});
-  PoseImages p;
-  p.exposure = k;
-  p.recExposed = scaledImage(rec, k);
-  p.refExposed = scaledImage(refCdM2, k);
-  p.recSrgb = cameraRgbToSrgb(p.recExposed, sensor);
-  p.refSrgb = cameraRgbToSrgb(p.refExposed, sensor);
-  return p;
-}
 
 void writeJson(const Json& j, const std::string& path) { writeTextFile(path, j.dump(2) + "\n"); }
 
@@ -152,7 +131,7 @@ class Fig11Run {
     v.referenceSeconds = ref.stats.seconds;
 
     const PoseImages img = exposeAlike(rec.image, ref.image, refToCdM2_, in_.camera.sensor);
-    const Image limited = bandLimitedReference(img.refExposed, refDepth, *camera);
+    const Image limited = bandLimitedReference(img.refExposed, refDepth, bandLimitOf(*camera));
     writeImage(img.recExposed, out("view_" + v.name + ".exr"));
     writeImage(img.recSrgb, out("view_" + v.name + ".png"));
     writeImage(img.refExposed, out("reference_" + v.name + ".exr"));
@@ -182,39 +161,16 @@ class Fig11Run {
         compareImages(limitedSrgb, img.recSrgb, copt, &mask, "band-limited reference_" + v.name, "view_" + v.name);
     Json& m = metrics[v.name];
     m["band_limited"] = metricsJson(v.bandLimitedMetrics);
-    m["band_limited"]["filter"] = bandLimitJson(camera);
+    m["band_limited"]["filter"] = bandLimitJson(bandLimitOf(camera));
     if (!depth.present) return;
     const std::vector<float> de = deltaE2000Map(limitedSrgb, img.recSrgb, "srgb", "srgb");
     v.depthBinsBandLimited = errorVsDepth(limited, img.recExposed, depth.z, depth.coverage, &mask, {}, &de);
     m["depth_error_band_limited"] = depthBinsJson(v.depthBinsBandLimited);
   }
 
-  // The display's sampling limit (analysis/band_limit.h) for this camera: the lenslet pitch, the
-  // panel pixel, the reconstruction gap, the camera distance and the footprint of an image pixel
-  // on the MLA plane at the image centre (from the horizontal field of view).
   BandLimit bandLimitOf(const CameraModel& camera) const {
-    BandLimit b;
-    b.lensPitchMm = in_.layout.lensPitchMm;
-    b.eiPixelMm = in_.display.panel.pixelPitchMm;
-    b.gapMm = in_.display.reconstructionGapMm;
-    b.distanceMm = in_.distanceMm;
-    b.footprintMm = 2.0 * in_.distanceMm * std::tan(0.5 * camera.horizontalFovDeg() * kPiD / 180.0) / camera.width();
-    return b;
-  }
-
-  Json bandLimitJson(const CameraModel& camera) const {
-    const BandLimit b = bandLimitOf(camera);
-    return Json{{"kind", "gaussian, variance of the lenslet box and the EI pixel's cone at the pixel's depth"},
-                {"lens_pitch_mm", b.lensPitchMm}, {"ei_pixel_mm", b.eiPixelMm}, {"gap_mm", b.gapMm},
-                {"distance_mm", b.distanceMm}, {"footprint_mm", b.footprintMm}, {"sigma_px_at_mla", b.sigmaPx(0.0)}};
-  }
-
-  // The reference filtered to what an ideal display of this pitch can show; without depth
-  // channels every pixel is taken at the MLA plane.
-  Image bandLimitedReference(const Image& ref, const ReferenceDepth& d, const CameraModel& camera) const {
-    const size_t n = size_t(ref.width) * size_t(ref.height);
-    return bandLimited(ref, d.present ? d.z : std::vector<float>(n, 0.0f), d.present ? d.coverage : std::vector<float>(n, 0.0f),
-                       bandLimitOf(camera));
+    return inim::bandLimitOf(in_.layout.lensPitchMm, in_.display.panel.pixelPitchMm, in_.display.reconstructionGapMm,
+                             in_.distanceMm, camera);
   }
 
   // CIEDE2000 per pixel, 0 to kErrorMapMax, over the pixels that see the display.
@@ -299,17 +255,19 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   if (observer.eiaDone) observer.eiaDone(result);
   DisplayModel dm = makeDisplayModel(in.display, in.layout, eia.eia, "(synthesized EIA)", s.mla);
   // The budget's EIAs: its ladder starts from the uncalibrated one; its calibration rung uses
-  // the run's calibration or the budget's own.
-  std::optional<SynthesisResult> otherEia;
+  // the run's calibration (the uncalibrated EIA then made again) or the budget's own (applied to
+  // the EIA made, which is exact: synthesis/eia_correction.h).
+  std::optional<Image> otherEia;
   BudgetScene scene;
   if (s.budget) {
-    const auto calibration = in.calibration ? in.calibration : in.budgetCalibration;
-    if (calibration) {
-      ss.correction = in.calibration ? nullptr : calibration;
-      otherEia = synthesizeEia(in.layout, in.display.panel, *in.field.field, ss);
+    if (in.calibration) {
+      ss.correction = nullptr;
+      otherEia = synthesizeEia(in.layout, in.display.panel, *in.field.field, ss).eia;
+    } else if (in.budgetCalibration) {
+      otherEia = correctedEia(in.layout, eia.eia, *in.budgetCalibration);
     }
-    scene = BudgetScene{&in.display, &in.layout, in.calibration ? &otherEia->eia : &eia.eia,
-                        !calibration ? nullptr : (in.calibration ? &eia.eia : &otherEia->eia), &in.camera, {}};
+    const Image* calibrated = in.calibration ? &eia.eia : (otherEia ? &*otherEia : nullptr);
+    scene = BudgetScene{&in.display, &in.layout, in.calibration ? &*otherEia : &eia.eia, calibrated, &in.camera, {}};
     scene.view.spp = s.budgetSpp;
     scene.view.apertureGrid = s.apertureGrid;
     scene.view.seed = s.seed;
@@ -317,7 +275,7 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
 
   // 2. Five poses: reconstruction and reference through the same camera.
   Fig11Run run(s, in, dm, eia.stats.exposureUsed * in.display.panel.peakLuminanceCdM2, s.budget ? &scene : nullptr);
-  writeImage(eia.eia, run.out("eia.exr"));
+  writeImage(eia.eia, run.out("eia.exr"), {{kEiaExposureHeader, eia.stats.exposureUsed}});
   writeImage(encodeForPanel(eia.eia, in.display.panel.eotf), run.out("eia.png"));
   for (const NamedPose& p : fig11Poses(s.angleDeg, in.distanceMm)) {
     if (!s.poses.empty() && std::find(s.poses.begin(), s.poses.end(), p.name) == s.poses.end()) continue;

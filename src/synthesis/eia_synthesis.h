@@ -61,6 +61,10 @@ struct SynthesisSettings {
   const RaySet* displayRays = nullptr;
 };
 
+// The EXR header entry that keeps SynthesisStats::exposureUsed with the EIA (`inim eia`, `inim
+// fig11`), so that a later `inim view --reference` exposes its reference in the same units.
+constexpr const char* kEiaExposureHeader = "inim:exposure";
+
 struct SynthesisStats {
   uint64_t displayRays = 0;
   uint64_t queries = 0;         // display rays x spp

@@ -144,6 +144,28 @@ TEST(CliView, BadOptionsAreBadInput) {
   expectBadInput(base + "--out " + out + " --camera no-such-camera", {"no-such-camera"}, {out});
 }
 
+// `inim view --reference`: the comparison's outputs beside --out; an EIA without the exposure in
+// its header needs --eia-exposure; bad rung names list the valid ones; nothing is left behind.
+TEST(CliView, ReferenceWritesTheComparisonAndTheBudget) {
+  const std::string eia = eiaFile("eia_ref.exr"), out = path("ref_view.exr");
+  const std::string base = "view --display " + smallDisplay() + " --eia " + eia + cameraArgs() +
+                           " --reference --scene " + data("scenes/test/point-sphere.json") + " --reference-spp 2 ";
+  const std::vector<std::string> files = {out, path("ref_view_reference.exr"), path("ref_view_error.png"),
+                                          path("ref_view_metrics.json"), path("ref_view_budget.json")};
+  expectBadInput(base + "--out " + out, {"inim:exposure", "--eia-exposure"}, {out, files[1], files[3]});
+  expectBadInput(base + "--out " + out + " --eia-exposure 0.5 --budget-rungs ideal,+sparkle",
+                 {"--budget-rungs", "+sparkle", "+real_mla"}, {out, files[1], files[3]});
+  expectBadInput(base + "--out " + out + " --eia-exposure 0", {"--eia-exposure"}, {out, files[1]});
+  const CliResult r = runInim(base + "--out " + out + " --eia-exposure 0.5 --budget-rungs ideal,+colour_chain");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const std::string& f : files) EXPECT_TRUE(fs::exists(f)) << f;
+  std::ifstream metrics(files[3]);
+  std::stringstream text;
+  text << metrics.rdbuf();
+  for (const char* key : {"\"de2000_mean\"", "\"band_limited\"", "\"eia_exposure\": 0.5"})
+    EXPECT_NE(text.str().find(key), std::string::npos) << key;
+}
+
 TEST(CliReference, PointSphereLandsAtTheImageCentre) {
   const std::string out = path("ref.exr");
   // The test sphere sits at z = -10 mm; move it onto the MLA plane, in front of the camera.

@@ -4,11 +4,14 @@
 // rounding remains); a bad file is named before any output.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
+#include "calibration/calibration_file.h"
 #include "calibration/lut_io.h"
 #include "core/output_file.h"
 #include "experiments/eia_run.h"
+#include "synthesis/eia_correction.h"
 #include "fixtures.h"
 
 using namespace inim;
@@ -95,4 +98,30 @@ TEST(EiaCalibration, BadFileIsNamedBeforeAnyOutput) {
   EXPECT_EQ(fixtures::expectInputError([&] { (void)runEia(s); }).key(), "calibration");
   EXPECT_FALSE(std::filesystem::exists(s.out));
   EXPECT_FALSE(std::filesystem::exists(scratch().path("bad.png")));
+}
+
+// The budget's calibration rung corrects an EIA already made (synthesis/eia_correction.h): that
+// must be the EIA `inim eia --calibration` makes, bit for bit, with a LUT that is not affine and
+// mixes channels (so that tetrahedral interpolation and clamping both matter).
+TEST(EiaCalibration, CorrectingAMadeEiaIsMakingItCorrected) {
+  const std::string lut = writeLut("mixing.cube", [](const Vec3d& x) {
+    return Vec3d(std::pow(x.x, 0.8) + 0.1 * x.y, 0.9 * x.y + 0.2 * x.z * x.z, 1.1 * x.z - 0.05 * x.x);
+  });
+  const EiaRunResult plain = runEia(smallRun("plain3", ""));
+  const EiaRunResult made = runEia(smallRun("mixing", lut));
+  const Image corrected = correctedEia(plain.layout, plain.synthesis.eia, *loadCalibration(lut));
+  ASSERT_EQ(corrected.data.size(), made.synthesis.eia.data.size());
+  EXPECT_TRUE(corrected.data == made.synthesis.eia.data);
+  EXPECT_FALSE(corrected.data == plain.synthesis.eia.data);
+}
+
+// The EXR keeps the exposure the EIA was made with, for `inim view --reference`.
+TEST(EiaCalibration, TheEiaHeaderKeepsItsExposure) {
+  const EiaRunSettings s = smallRun("header", "");
+  const EiaRunResult r = runEia(s);
+  const std::optional<double> e = readImageNumber(s.out, kEiaExposureHeader);
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(*e, r.synthesis.stats.exposureUsed);
+  EXPECT_NE(r.synthesis.stats.exposureUsed, 1.0);  // auto exposure chose a factor
+  EXPECT_FALSE(readImageNumber(s.out, "inim:no_such_entry").has_value());
 }

@@ -1,0 +1,43 @@
+#pragma once
+// A reconstruction and its reference at one pose, compared as `inim fig11` and `inim view
+// --reference` both compare them: exposed alike in the display's units, the band-limited
+// reference beside the full one, and the second reference of the budget's noise floor.
+//
+//   PoseImages img = exposeAlike(rec, ref, eiaExposure * peakCdM2, sensor);
+//   BandLimit b = bandLimitOf(layout.lensPitchMm, panel.pixelPitchMm, gapMm, distanceMm, camera);
+//   Image limited = bandLimitedReference(img.refExposed, depth, b);
+#include "analysis/band_limit.h"
+#include "camera/camera_model.h"
+#include "camera/sensor.h"
+#include "core/image.h"
+#include "core/json_config.h"
+#include "experiments/fig11_depth.h"
+#include "view/view_image.h"
+
+namespace inim {
+
+struct PoseImages {
+  Image recExposed, refExposed, recSrgb, refSrgb;
+  double exposure = 1.0;  // the factor on the reconstruction (display units)
+};
+
+// One exposure for both, in the same units: the EIA maps field luminance Y to drive
+// eiaExposure x Y, which the panel shows at eiaExposure x Y x peak luminance (cd/m^2), the unit
+// of the reconstruction. So the reference, scaled by `refToCdM2` (that product), is what an
+// ideal display would show; the exposure that suits the reference (`e`, auto by default) then
+// applies to both, and what the optics lose or add (Fresnel, black matrix, crosstalk) stays
+// visible in the metrics.
+PoseImages exposeAlike(const Image& rec, const Image& ref, double refToCdM2, const CameraSensor& sensor,
+                       const Exposure& e = Exposure{});
+
+// The display's sampling limit for this camera (analysis/band_limit.h): the lenslet pitch, the
+// panel pixel, the gap, the camera distance and the footprint of an image pixel on the MLA plane
+// at the image centre (from the horizontal field of view).
+BandLimit bandLimitOf(double lensPitchMm, double eiPixelMm, double gapMm, double distanceMm, const CameraModel& camera);
+Json bandLimitJson(const BandLimit& b);  // the filter's parameters, for metrics.json
+
+// The reference filtered to what an ideal display of this pitch can show; without depth
+// channels every pixel is taken at the MLA plane.
+Image bandLimitedReference(const Image& ref, const ReferenceDepth& depth, const BandLimit& b);
+
+}  // namespace inim
