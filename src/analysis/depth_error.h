@@ -68,14 +68,17 @@ struct DepthErrorCurve {
   std::vector<DepthBin> bins;
 };
 
-// What is marked: the MLA plane z = 0 always; the reference image plane L (where the lenslets
-// image the panel; a vertical line) and the depth-of-field band |z| <= depthOfFieldMm (shaded)
-// when given.
+// What is marked: the MLA plane z = 0 always; when given, the reference image plane L (where the
+// lenslets image the panel; a vertical line), the depth of field around it (shaded orange: the
+// depths whose lenslet facets line up within half a magnified pixel) and the depth range
+// |z| <= samplingRangeMm around the MLA plane (shaded blue: lateral sampling <= 2P).
 struct DepthMarks {
   std::optional<double> referencePlaneMm;
   std::string referencePlaneLabel = "L";
-  double depthOfFieldMm = 0.0;  // 0: no band
+  std::optional<std::pair<double, double>> depthOfFieldMm;  // [near, far] z
   std::string depthOfFieldLabel = "depth of field";
+  double samplingRangeMm = 0.0;  // 0: no band
+  std::string samplingRangeLabel = "depth range";
 };
 
 enum class DepthErrorQuantity { RelativeRmse, DeltaE2000 };

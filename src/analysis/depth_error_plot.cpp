@@ -48,17 +48,22 @@ YRange yRange(const std::vector<DepthErrorCurve>& curves, DepthErrorQuantity q) 
 
 void addMarks(Plot& p, const DepthMarks& m, double zLo, double zHi, double yLo, double yHi) {
   const Vec3 grey(0.35f, 0.35f, 0.35f), dark(0.1f, 0.1f, 0.1f);
-  if (m.depthOfFieldMm > 0.0) {
-    const double a = std::max(zLo, -m.depthOfFieldMm), b = std::min(zHi, m.depthOfFieldMm);
+  auto addBand = [&](double lo, double hi, const std::string& name, const Vec3& colour) {
+    const double a = std::max(zLo, lo), b = std::min(zHi, hi);
+    if (!(b > a)) return;
     PlotPolygon band;
-    band.name = m.depthOfFieldLabel;
+    band.name = name;
     band.x = {a, b, b, a};
     band.y = {yLo, yLo, yHi, yHi};
-    band.color = Vec3(0.55f, 0.7f, 0.9f);
+    band.color = colour;
     band.alpha = 0.25;
     band.edgeWidth = 0.0;
     p.polygons.push_back(band);
-  }
+  };
+  if (m.samplingRangeMm > 0.0)
+    addBand(-m.samplingRangeMm, m.samplingRangeMm, m.samplingRangeLabel, Vec3(0.55f, 0.7f, 0.9f));
+  if (m.depthOfFieldMm)
+    addBand(m.depthOfFieldMm->first, m.depthOfFieldMm->second, m.depthOfFieldLabel, Vec3(0.95f, 0.6f, 0.2f));
   p.markers.push_back({0.0, "MLA plane", dark, 0.0});
   if (m.referencePlaneMm && std::isfinite(*m.referencePlaneMm))
     p.markers.push_back({*m.referencePlaneMm, m.referencePlaneLabel, grey, 6.0});

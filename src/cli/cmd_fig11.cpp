@@ -41,6 +41,8 @@ void addFig11Command(CLI::App& app) {
   cmd->add_option("--reference-spp", o->s.referenceSpp, "Samples per pixel of the reference views")->capture_default_str();
   cmd->add_option("--eia-spp", o->s.eiaSpp, "Field samples per display ray for the EIA")->capture_default_str();
   cmd->add_option("--angle", o->s.angleDeg, "Viewing angle of the four side views, degrees")->capture_default_str();
+  cmd->add_option("--poses", o->s.poses, "Only these poses (comma separated): centre, left, right, top, bottom")
+      ->delimiter(',');
   cmd->add_option("--distance-mm", o->s.distanceMm, "Camera distance (default: the camera description's)");
   cmd->add_option("--calibration", o->s.calibrationPath,
                   "Panel calibration applied to the EIA's drive values, as `inim eia --calibration` (.cube or "

@@ -3,6 +3,7 @@
 #include "analysis/metrics.h"
 #include "core/format.h"
 #include "display/display_info.h"
+#include "display/ei_layout.h"
 
 namespace inim {
 
@@ -41,9 +42,16 @@ DepthMarks depthMarksFor(const Display& display) {
     m.referencePlaneMm = rec.referencePlaneMm;
     m.referencePlaneLabel = "L = " + formatNumber(*m.referencePlaneMm, "%.1f") + " mm";
   }
-  m.depthOfFieldMm = rec.depthRangeMm;
-  m.depthOfFieldLabel = "depth of field |z| ≤ " + formatNumber(rec.depthRangeMm, "%.3g") +
-                        " mm (lateral sampling ≤ 2P)";
+  m.samplingRangeMm = rec.depthRangeMm;
+  m.samplingRangeLabel = "depth range |z| ≤ " + formatNumber(rec.depthRangeMm, "%.3g") + " mm (lateral sampling ≤ 2P)";
+  if (m.referencePlaneMm && *m.referencePlaneMm > 0.0) {
+    // The facets of neighbouring lenslets drift apart by P |z - L| / L; within half a magnified
+    // pixel (d L / g) of each other the pixel quantisation hides it (validation/depth-sharpness).
+    const double L = *m.referencePlaneMm, g = rec.opticalGapMm.value_or(rec.gapMm);
+    const double half = 0.5 * (display.panel.pixelPitchMm * L / g) * L / computeLayout(display).lensPitchMm;
+    m.depthOfFieldMm = std::pair{L - half, L + half};
+    m.depthOfFieldLabel = "depth of field |z − L| ≤ ½ (d L/g) L/P = " + formatNumber(half, "%.2g") + " mm";
+  }
   return m;
 }
 

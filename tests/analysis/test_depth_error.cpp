@@ -196,7 +196,8 @@ TEST(DepthErrorPlot, MarksTheMlaPlaneLAndTheDepthOfFieldBand) {
   DepthMarks m;
   m.referencePlaneMm = 30.0;  // beyond the bins: the range grows to show it
   m.referencePlaneLabel = "L = 30 mm";
-  m.depthOfFieldMm = 100.0;   // wider than the range: clipped to it
+  m.samplingRangeMm = 100.0;   // wider than the range: clipped to it
+  m.depthOfFieldMm = std::pair{27.0, 33.0};  // around L, partly beyond the range: clipped to it
   for (DepthErrorQuantity q : {DepthErrorQuantity::RelativeRmse, DepthErrorQuantity::DeltaE2000}) {
     const Plot p = depthErrorPlot({{"0°", bins}, {"H +7°", bins}}, m, q);
     ASSERT_EQ(p.series.size(), 2u);
@@ -207,8 +208,10 @@ TEST(DepthErrorPlot, MarksTheMlaPlaneLAndTheDepthOfFieldBand) {
     const PlotFrame f = plotFrame(p);
     EXPECT_LE(f.xMin, -24.0);
     EXPECT_GE(f.xMax, 30.0);
-    ASSERT_EQ(p.polygons.size(), 1u);
-    for (double x : p.polygons[0].x) EXPECT_TRUE(x >= f.xMin && x <= f.xMax) << x;
+    ASSERT_EQ(p.polygons.size(), 2u);
+    for (const PlotPolygon& band : p.polygons)
+      for (double x : band.x) EXPECT_TRUE(x >= f.xMin && x <= f.xMax) << x;
+    EXPECT_EQ(p.polygons[1].x[0], 27.0);
     // Every value is inside the y range (and the top leaves room above the largest).
     for (const PlotSeries& ser : p.series)
       for (double y : ser.y) EXPECT_LT(y, f.yMax);

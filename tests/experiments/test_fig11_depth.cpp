@@ -120,7 +120,14 @@ TEST(Fig11Depth, MarksAreTheReconstructionsLAndDepthRange) {
   ASSERT_TRUE(withGlass.referencePlaneMm && rec.opticalReferencePlaneMm && rec.referencePlaneMm);
   EXPECT_EQ(*withGlass.referencePlaneMm, *rec.opticalReferencePlaneMm);
   EXPECT_NE(withGlass.referencePlaneLabel.find("cover glass"), std::string::npos);
-  EXPECT_EQ(withGlass.depthOfFieldMm, 2.0 * d.reconstructionGapMm);  // lateral sampling <= 2P
+  EXPECT_EQ(withGlass.samplingRangeMm, 2.0 * d.reconstructionGapMm);  // lateral sampling <= 2P
+  // The depth of field: half a magnified pixel's worth of facet drift either side of L
+  // (prototype: d = 0.0395 mm, g_eff = 3.812 mm, L_eff = 24.5 mm, P = 1 mm: about +-3.1 mm).
+  ASSERT_TRUE(withGlass.depthOfFieldMm.has_value());
+  const double L = *withGlass.referencePlaneMm, half = 0.5 * d.panel.pixelPitchMm * L * L / (*rec.opticalGapMm * 1.0);
+  EXPECT_NEAR(withGlass.depthOfFieldMm->first, L - half, 1e-9);
+  EXPECT_NEAR(withGlass.depthOfFieldMm->second, L + half, 1e-9);
+  EXPECT_NEAR(half, 3.1, 0.1);
   // The glass moves the panel's image: without it, L = g f / (g - f) of the bare gap.
   d.panel.coverGlass.reset();
   const DepthMarks bare = depthMarksFor(d);
