@@ -468,8 +468,11 @@ std::string metricsText(const ImageMetrics& m, const CompareOptions& opt) {
   std::snprintf(buf, sizeof buf, "pixels       %lld of %d x %d\n", static_cast<long long>(m.pixels), m.width,
                 m.height);
   o << buf;
-  std::snprintf(buf, sizeof buf, "RMSE         %.4g%% of A's mean  (B - A, linear input values, R, G, B)\n",
-                100.0 * m.rmseRelative);
+  if (std::isfinite(m.rmseRelative))
+    std::snprintf(buf, sizeof buf, "RMSE         %.4g%% of A's mean  (B - A, linear input values, R, G, B)\n",
+                  100.0 * m.rmseRelative);
+  else  // A is black: a share of its mean means nothing
+    std::snprintf(buf, sizeof buf, "RMSE         n/a  (A's mean is 0: no relative RMSE)\n");
   o << buf;
   o << "PSNR         " << formatPsnr(m.psnrDb) << " dB  (" << values << ", peak " << opt.peak
     << (std::isinf(m.psnrDb) ? "; identical" : "") << ")\n";

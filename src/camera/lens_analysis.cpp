@@ -103,6 +103,12 @@ LensInfo analyzeLens(const LensSystem& lens, double lambdaNm) {
     return r;
   };
   info.eflMm = extrapolate([&](double hh) { LensRay r = forwardParallel(hh); return -hh * r.d.z / r.d.y; }, h);
+  // A lens without power (only a stop, or flat and afocal groups) sends parallel rays out
+  // parallel: it has no focal length, and no camera can be built on it.
+  if (!std::isfinite(info.eflMm) || std::abs(info.eflMm) > 1e9)
+    throw InputError(lens.file(), "surfaces", std::to_string(n) + " surface" + (n == 1 ? "" : "s"),
+                     "a lens with optical power (near-axis rays parallel to the axis leave it parallel: no focal "
+                     "length)");
   info.bflMm = extrapolate([&](double hh) { return axisCrossingZ(forwardParallel(hh)) - zLast; }, h);
 
   // Front focal point: a ray parallel to the axis from the image side.

@@ -6,9 +6,11 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <tuple>
 
 #include "cli/commands.h"
 #include "cli/options.h"
+#include "core/error.h"
 #include "core/format.h"
 #include "experiments/camera_run.h"
 #include "experiments/view_reference.h"
@@ -25,7 +27,8 @@ struct CameraPoseOpts {
   int spp = 16;
   bool quiet = false;
   RunOptions run;
-  CLI::Option *distanceOpt = nullptr, *sppOpt = nullptr;
+  CLI::Option *distanceOpt = nullptr, *sppOpt = nullptr, *focusOpt = nullptr, *widthOpt = nullptr,
+              *heightOpt = nullptr;
   // The settings with the options that need their own parsing applied.
   CameraRunSettings settings() const {
     CameraRunSettings c = s;
@@ -34,6 +37,11 @@ struct CameraPoseOpts {
                 : cameraModel == "thin-lens" ? CameraModelKind::ThinLens
                                              : CameraModelKind::RealLens;
     if (distanceOpt->count()) c.distanceMm = distanceMm;
+    // 0 means "the default" inside; given on the command line it is a mistake.
+    if (focusOpt->count() && !(s.focusMm > 0.0))
+      throw InputError("", "focus_mm", formatNumber(s.focusMm), "a focus distance > 0 mm");
+    for (auto [opt, v, key] : {std::tuple{widthOpt, s.width, "width"}, {heightOpt, s.height, "height"}})
+      if (opt->count() && v < 1) throw InputError("", key, std::to_string(v), "a whole number of pixels >= 1");
     return c;
   }
 };
@@ -50,11 +58,11 @@ void addCameraPoseOptions(CLI::App* cmd, CameraPoseOpts& o) {
   cmd->add_option("--rot-v-deg", o.s.rotVDeg,
                   "Display rotation about its horizontal axis, degrees; + turns its top edge away from the camera")
       ->capture_default_str();
-  cmd->add_option("--focus-mm", o.s.focusMm, "Focus distance from the entrance pupil, mm (default: the camera "
+  o.focusOpt = cmd->add_option("--focus-mm", o.s.focusMm, "Focus distance from the entrance pupil, mm (default: the camera "
                                              "distance, i.e. the MLA plane)");
-  cmd->add_option("--width", o.s.width, "Image width in pixels (default: the sensor's; a smaller width keeps the field "
+  o.widthOpt = cmd->add_option("--width", o.s.width, "Image width in pixels (default: the sensor's; a smaller width keeps the field "
                                         "of view and scales the pixel pitch)");
-  cmd->add_option("--height", o.s.height, "Image height in pixels (default: the sensor's aspect ratio)");
+  o.heightOpt = cmd->add_option("--height", o.s.height, "Image height in pixels (default: the sensor's aspect ratio)");
   o.sppOpt = cmd->add_option("--spp", o.spp, "Samples per pixel")->capture_default_str();
   cmd->add_option("--exposure", o.s.exposure,
                   "Exposure factor applied to the EXR and the PNG, or auto (99th percentile of the brightest channel "

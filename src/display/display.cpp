@@ -1,5 +1,6 @@
 #include "display/display.h"
 
+#include "display/gap_range.h"
 #include <algorithm>
 #include <filesystem>
 
@@ -75,8 +76,8 @@ Display loadDisplay(const std::string& path) {
   d.name = o.string("name");
   d.panel = readPart<Panel>(o, "panel", "panels", parsePanel, loadPanel);
   d.mla = readPart<Mla>(o, "mla", "mlas", parseMla, loadMla);
-  d.generationGapMm = o.positive("generation_gap_mm");
-  d.reconstructionGapMm = o.positive("reconstruction_gap_mm");
+  d.generationGapMm = checkGapMm(o.number("generation_gap_mm"), path, "generation_gap_mm");
+  d.reconstructionGapMm = checkGapMm(o.number("reconstruction_gap_mm"), path, "reconstruction_gap_mm");
   readPair(o, "ei_px", d.eiWidthPx, d.eiHeightPx, true);
   readPair(o, "ei_count", d.eiCols, d.eiRows, false);
   std::string layout = o.choice("layout", {"parallel", "toed-in", "lens-grid"}, "parallel");

@@ -13,6 +13,20 @@ namespace inim {
 
 namespace {
 
+// The toed-in EIA spans (K - 1) steps of P (1 + g/D) plus an EI. A span no pixel count can hold
+// comes from the viewing distance: say so before any pixel count is formed (a distance of 1e-9 mm
+// once gave "694574528 x -830233771 px"); an ordinary overflow is the panel-fit check's to name.
+void checkToedInSpan(const Display& d, int K, int R, int eiW, int eiH, double stepPx) {
+  constexpr double kMaxSpanPx = 1e8;
+  const double w = (K - 1) * stepPx + eiW, h = (R - 1) * stepPx + eiH;
+  if (w <= kMaxSpanPx && h <= kMaxSpanPx) return;
+  throw InputError(d.file, "viewing_distance_mm", formatNumber(*d.viewingDistanceMm),
+                   "a distance whose toed-in EI step P (1 + g/D) = " + formatNumber(stepPx) + " px keeps the " +
+                       std::to_string(K) + " x " + std::to_string(R) + " EIs on the panel's " +
+                       std::to_string(d.panel.widthPx) + " x " + std::to_string(d.panel.heightPx) +
+                       " px (they would span " + formatNumber(w, "%.4g") + " x " + formatNumber(h, "%.4g") + " px)");
+}
+
 // Places `count` EIs of `n` pixels along one axis. `centrePx(k)` is the ideal EI centre in
 // pixels from the origin (the EIA centre), increasing with k and symmetric about 0. EI start
 // positions are snapped to the pixel lattice that keeps the EIA centred on the origin
@@ -274,6 +288,7 @@ EiLayout computeLayout(const Display& d) {
   if (d.layout == EiLayoutKind::ToedIn) {
     double D = *d.viewingDistanceMm;
     double m = 1.0 + g / D;  // projection of the lens centre from (0, 0, D) onto z = -g
+    checkToedInSpan(d, K, R, L.eiW, L.eiH, P * m / p);
     ax = placeAxis(K, L.eiW, [&](int k) { return L.lensX[size_t(k)] * m / p; });
     ay = placeAxis(R, L.eiH, [&](int l) { return -L.lensY[size_t(l)] * m / p; });
     if (ax.minStep < L.eiW || ay.minStep < L.eiH) {

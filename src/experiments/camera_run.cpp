@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <future>
 
+#include "display/gap_range.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/output_file.h"
@@ -39,7 +40,15 @@ CameraSetup setupCamera(const CameraRunSettings& o, int spp) {
   co.focusMm = o.focusMm;
   if (o.focusMm < 0.0 || !std::isfinite(o.focusMm))
     throw InputError("", "focus_mm", formatNumber(o.focusMm), "a focus distance > 0 mm");
-  s.camera = makeViewCamera(s.desc, s.pose, co);
+  try {
+    s.camera = makeViewCamera(s.desc, s.pose, co);
+  } catch (const InputError& e) {
+    // A lens that cannot focus there: the focus or distance asked for is the cause, not the lens.
+    if (e.key() != "focus_distance_mm" || !(o.focusMm > 0.0 || o.distanceMm)) throw;
+    const bool focus = o.focusMm > 0.0;
+    throw InputError("", focus ? "focus_mm" : "distance_mm", formatNumber(focus ? o.focusMm : s.pose.distanceMm),
+                     e.expected() + " for " + s.desc.name);
+  }
   return s;
 }
 
@@ -68,6 +77,19 @@ void checkEiaPath(const std::string& path) {
 
 namespace {
 
+// The display model; a gap the MLA cannot take blames the gap given, or the display's own.
+DisplayModel displayModelAtGap(const Display& d, const EiLayout& L, const Image& eia, const ViewRunSettings& s,
+                               double gapMm, const EmitterSettings& es) {
+  try {
+    return makeDisplayModel(d, L, eia, s.eiaPath, s.mla, gapMm, es);
+  } catch (const InputError& e) {
+    if (e.key() != "gap_mm") throw;
+    const std::string why = e.expected() + " (" + d.mla.name + ")";
+    if (s.gapMm) throw InputError("", "gap_mm", e.value(), why);
+    throw InputError(d.file, "reconstruction_gap_mm", e.value(), why);
+  }
+}
+
 // The EIA, as drive values (a PNG is decoded through the panel's EOTF by the emitter).
 Image readEia(const std::string& path) {
   checkEiaPath(path);
@@ -92,13 +114,13 @@ ViewRunResult renderViewRun(const ViewRunSettings& s, const std::function<void(c
   r.display = loadDisplay(displayPathOrDefault(s.displayPath));
   const EiLayout L = applyLayoutOverride(r.display, s.layout);
   r.gapMm = s.gapMm.value_or(r.display.reconstructionGapMm);
-  if (!(r.gapMm > 0.0) || !std::isfinite(r.gapMm)) throw InputError("", "gap_mm", formatNumber(r.gapMm), "a gap > 0 mm");
+  if (s.gapMm) checkGapMm(*s.gapMm, "", "gap_mm");
   r.eia = std::make_shared<const Image>(readEia(s.eiaPath));
   r.eiaWidth = r.eia->width, r.eiaHeight = r.eia->height;
   r.layout = L;
   EmitterSettings es = s.emitter;
   es.encoded = lowerExtension(s.eiaPath) == ".png";
-  const DisplayModel dm = makeDisplayModel(r.display, L, *r.eia, s.eiaPath, s.mla, r.gapMm, es);
+  const DisplayModel dm = displayModelAtGap(r.display, L, *r.eia, s, r.gapMm, es);
   r.coverGlass = dm.panel->hasCoverGlass();
   if (loaded) loaded(r);
   r.loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "display/gap_range.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/output_file.h"
@@ -167,7 +168,7 @@ RayExportResult exportRays(const RayExportSettings& s) {
   Target t{s, outFormat, text, "", loadDisplay(displayPathOrDefault(s.displayPath)), {}, nullptr};
   t.layout = applyLayoutOverride(t.display, s.layout);
   if (s.gapMm) {
-    if (!(*s.gapMm > 0.0) || !std::isfinite(*s.gapMm)) throw InputError("", "gap_mm", std::to_string(*s.gapMm), "a gap > 0 mm");
+    checkGapMm(*s.gapMm, "", "gap_mm");
     t.layout = t.layout.withGap(*s.gapMm);
   }
   // Real-lens rays: traced before any output is opened (a bad MLA fails here).

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "display/gap_range.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/image.h"
@@ -44,7 +45,7 @@ TriadFormResult formTriads(const TriadFormSettings& s) {
   Display d = loadDisplay(displayPathOrDefault(s.displayPath));
   EiLayout L = applyLayoutOverride(d, s.layout);
   if (s.gapMm) {
-    if (!(*s.gapMm > 0.0) || !std::isfinite(*s.gapMm)) throw InputError("", "gap_mm", std::to_string(*s.gapMm), "a gap > 0 mm");
+    checkGapMm(*s.gapMm, "", "gap_mm");
     L = L.withGap(*s.gapMm);
   }
   TriadFormResult r;
