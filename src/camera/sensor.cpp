@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "core/error.h"
 #include "core/output_file.h"
@@ -177,10 +178,8 @@ Vec3d CameraSensor::cameraRgb(const Spectrum& radiance) const {
 CameraSensor parseSensor(const JsonObject& o) {
   SensorGeometry g;
   std::string name = o.string("name", "sensor");
-  g.widthPx = o.integer("width_px");
-  g.heightPx = o.integer("height_px");
-  if (g.widthPx < 1) o.fail("width_px", std::to_string(g.widthPx), "an integer >= 1");
-  if (g.heightPx < 1) o.fail("height_px", std::to_string(g.heightPx), "an integer >= 1");
+  g.widthPx = o.integer("width_px", 1, std::numeric_limits<int>::max());
+  g.heightPx = o.integer("height_px", 1, std::numeric_limits<int>::max());
   g.pitchMm = o.positive("pixel_pitch_mm");
   std::vector<std::string> channels = {"r", "g", "b"};
   if (o.has("channels")) {

@@ -2,26 +2,112 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <iterator>
+#include <limits>
+#include <optional>
 
 #include "core/error.h"
 
 namespace inim {
 
+namespace {
+
+// "line L, column C" (1-based) of byte `offset` in `text`.
+std::string lineColumn(const std::string& text, size_t offset) {
+  offset = std::min(offset, text.size());
+  const size_t lines = size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(offset), '\n'));
+  const size_t lineStart = offset == 0 ? std::string::npos : text.rfind('\n', offset - 1);
+  const size_t column = lineStart == std::string::npos ? offset + 1 : offset - lineStart;
+  return "line " + std::to_string(lines + 1) + ", column " + std::to_string(column);
+}
+
+// The library's own DOM builder, with the nesting counted as it goes (its parser is
+// iterative, but printing and copying a value recurse, so a deep file would overflow the
+// stack later) and every parse failure turned into an InputError naming the file and where.
+class CheckedSax {
+ public:
+  CheckedSax(Json& root, const std::string& text, const std::string& name)
+      : dom_(root), text_(text), name_(name) {}
+
+  bool null() { return dom_.null(); }
+  bool boolean(bool v) { return dom_.boolean(v); }
+  bool number_integer(Json::number_integer_t v) { return dom_.number_integer(v); }
+  bool number_unsigned(Json::number_unsigned_t v) { return dom_.number_unsigned(v); }
+  bool number_float(Json::number_float_t v, const std::string& s) { return dom_.number_float(v, s); }
+  bool string(std::string& v) { return dom_.string(v); }
+  bool binary(Json::binary_t& v) { return dom_.binary(v); }
+  bool key(std::string& k) { return dom_.key(k); }
+  bool start_object(std::size_t n) { return enter() && dom_.start_object(n); }
+  bool end_object() { return --depth_, dom_.end_object(); }
+  bool start_array(std::size_t n) { return enter() && dom_.start_array(n); }
+  bool end_array() { return --depth_, dom_.end_array(); }
+
+  // `offset` is the byte just past the offending token; `token` is that number for 406.
+  bool parse_error(std::size_t offset, const std::string& token, const Json::exception& e) {
+    if (e.id == 406)  // a number literal beyond a double's range
+      throw InputError(name_, "", token + " (" + lineColumn(text_, offset - std::min(offset, token.size())) + ")",
+                       "a finite number (within a double's range, |x| < 1.8e308)");
+    if (offset >= 1 && offset <= text_.size() && text_[offset - 1] == '/')  // the lexer stops at the '/'
+      throw InputError(name_, "", "a comment (" + lineColumn(text_, offset - 1) + ")",
+                       "JSON without comments (notes go in a key starting with '_', e.g. \"_comment\")");
+    throw InputError(name_, "", "malformed JSON (" + std::string(e.what()) + ")", "valid JSON");
+  }
+
+ private:
+  bool enter() {
+    if (++depth_ > kMaxJsonDepth)
+      throw InputError(name_, "", "nesting deeper than " + std::to_string(kMaxJsonDepth) + " levels",
+                       "JSON nested at most " + std::to_string(kMaxJsonDepth) + " levels deep");
+    return true;
+  }
+  nlohmann::detail::json_sax_dom_parser<Json> dom_;
+  const std::string& text_;
+  const std::string& name_;
+  int depth_ = 0;
+};
+
+}  // namespace
+
+Json parseJsonText(const std::string& text, const std::string& name) {
+  Json root;
+  CheckedSax sax(root, text, name);
+  if (!Json::sax_parse(text, &sax, nlohmann::detail::input_format_t::json, /*strict=*/true,
+                       /*ignore_comments=*/false))
+    throw InputError(name, "", "malformed JSON", "valid JSON");
+  return root;
+}
+
 Json readJsonFile(const std::string& path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "", "a readable JSON file (cannot open it)");
-  try {
-    return Json::parse(in, nullptr, true, /*ignore_comments=*/true);
-  } catch (const Json::parse_error& e) {
-    throw InputError(path, "", "malformed JSON (" + std::string(e.what()) + ")", "valid JSON");
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return parseJsonText(text, path);
+}
+
+// Appends `j` compactly, stopping once `out` is longer than `limit`: each level adds a
+// character before descending, so the recursion is at most `limit` deep.
+static void appendValueText(const Json& j, std::string& out, size_t limit) {
+  if (out.size() > limit) return;
+  if (j.is_array() || j.is_object()) {
+    out += j.is_array() ? '[' : '{';
+    bool first = true;
+    for (auto it = j.begin(); it != j.end() && out.size() <= limit; ++it, first = false) {
+      if (!first) out += ',';
+      if (j.is_object()) out += Json(it.key()).dump() + ':';
+      appendValueText(it.value(), out, limit);
+    }
+    out += j.is_array() ? ']' : '}';
+  } else {
+    out += j.dump();
   }
 }
 
 std::string jsonValueText(const Json& j) {
-  std::string s = j.dump();
+  std::string s;
+  appendValueText(j, s, 60);
   if (s.size() > 60) s = s.substr(0, 57) + "...";
   return s;
 }
@@ -100,13 +186,59 @@ double JsonObject::positive(const std::string& key) const {
 double JsonObject::positive(const std::string& key, double fallback) const {
   return has(key) ? positive(key) : fallback;
 }
+// The whole number `v` holds exactly (an integer, or a float with no fraction part), if it is
+// one within [lo, hi]; read from the number's own type, so nothing is rounded or wrapped.
+static std::optional<int> wholeNumber(const Json& v, int lo, int hi) {
+  int64_t i = 0;
+  if (v.is_number_unsigned()) {
+    const uint64_t u = v.get<uint64_t>();
+    if (u > uint64_t(std::numeric_limits<int64_t>::max())) return std::nullopt;
+    i = int64_t(u);
+  } else if (v.is_number_integer()) {
+    i = v.get<int64_t>();
+  } else if (v.is_number_float()) {
+    const double d = v.get<double>();
+    if (!(d >= double(lo) && d <= double(hi)) || d != std::trunc(d)) return std::nullopt;  // NaN fails
+    return int(d);
+  } else {
+    return std::nullopt;
+  }
+  if (i < lo || i > hi) return std::nullopt;
+  return int(i);
+}
+
+// "a whole number >= 1", "whole numbers in [0, 1000]", ...
+static std::string wholeNumbersText(int lo, int hi, bool plural) {
+  std::string s = plural ? "whole numbers" : "a whole number";
+  constexpr int kMin = std::numeric_limits<int>::min(), kMax = std::numeric_limits<int>::max();
+  if (lo == kMin && hi == kMax) return s + " in [" + std::to_string(kMin) + ", " + std::to_string(kMax) + "]";
+  if (hi == kMax) return s + " >= " + std::to_string(lo);
+  if (lo == kMin) return s + " <= " + std::to_string(hi);
+  return s + " in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+}
+
 int JsonObject::integer(const std::string& key) const {
-  const Json& v = get(key);
-  if (!v.is_number_integer()) fail(key, jsonValueText(v), "an integer");
-  return v.get<int>();
+  return integer(key, std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
 }
 int JsonObject::integer(const std::string& key, int fallback) const {
   return has(key) ? integer(key) : fallback;
+}
+int JsonObject::integer(const std::string& key, int lo, int hi) const {
+  const Json& v = get(key);
+  const std::optional<int> n = wholeNumber(v, lo, hi);
+  if (!n) fail(key, jsonValueText(v), wholeNumbersText(lo, hi, false));
+  return *n;
+}
+std::vector<int> JsonObject::integers(const std::string& key, int lo, int hi) const {
+  const Json& v = get(key);
+  if (!v.is_array()) fail(key, jsonValueText(v), "an array of " + wholeNumbersText(lo, hi, true));
+  std::vector<int> r;
+  for (const auto& e : v) {
+    const std::optional<int> n = wholeNumber(e, lo, hi);
+    if (!n) fail(key, jsonValueText(v), "an array of " + wholeNumbersText(lo, hi, true));
+    r.push_back(*n);
+  }
+  return r;
 }
 bool JsonObject::boolean(const std::string& key, bool fallback) const {
   if (!has(key)) return fallback;

@@ -1,6 +1,14 @@
 #pragma once
 // Strict JSON config access: every read names its file and key path, every key must be
-// consumed, so a misspelt key is an error instead of a silently ignored setting.
+// consumed, so a misspelt key is an error instead of a silently ignored setting. Every JSON
+// file the program reads goes through readJsonFile, which refuses what the library would take
+// badly: nesting deeper than kMaxJsonDepth (the library's printer and copier recurse),
+// numbers too large for a double, and comments (not JSON).
+//
+//   Json j = readJsonFile(path);
+//   JsonObject o(j, path, "");
+//   int spp = o.integer("spp", 1, 1 << 20);  // exact: 4294967297 or 2.5 is an error, not 1 or 2
+//   o.rejectUnknown();
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -13,8 +21,14 @@ namespace inim {
 
 using Json = nlohmann::json;
 
-// Parses a JSON file; throws InputError naming the file (and line/column) on failure.
+// Deeper nesting than any config needs; refused while parsing, before it can hurt.
+constexpr int kMaxJsonDepth = 512;
+
+// Parses a JSON file; throws InputError naming the file (and line/column) on malformed JSON,
+// comments, nesting deeper than kMaxJsonDepth, or a number too large for a double.
 Json readJsonFile(const std::string& path);
+// The same for text held in memory; `name` stands for the file in messages.
+Json parseJsonText(const std::string& text, const std::string& name);
 
 class JsonObject {
  public:
@@ -28,8 +42,14 @@ class JsonObject {
   double number(const std::string& key, double fallback) const;
   double positive(const std::string& key) const;  // > 0
   double positive(const std::string& key, double fallback) const;
+  // A whole number: an integer, or a number with a fraction part of zero (1080.0, as some
+  // tools write sizes), in [lo, hi] (default: int's range). The value is read exactly: 1080.5,
+  // 1e12 or 4294967297 is an error naming it as written, never rounded or wrapped.
   int integer(const std::string& key) const;
   int integer(const std::string& key, int fallback) const;
+  int integer(const std::string& key, int lo, int hi) const;
+  // An array of whole numbers, each in [lo, hi].
+  std::vector<int> integers(const std::string& key, int lo, int hi) const;
   bool boolean(const std::string& key, bool fallback) const;
   std::string string(const std::string& key) const;
   std::string string(const std::string& key, const std::string& fallback) const;
@@ -65,6 +85,7 @@ class JsonObject {
   mutable std::set<std::string> asked_;  // keys the reader knows, present or not
 };
 
-std::string jsonValueText(const Json& j);  // compact, truncated, for messages
+// Compact, truncated to 60 characters, for messages; bounded work and stack at any depth.
+std::string jsonValueText(const Json& j);
 
 }  // namespace inim

@@ -1,6 +1,7 @@
 #include "dataset/transforms_json.h"
 
 #include <cmath>
+#include <limits>
 
 #include "core/error.h"
 #include "core/json_config.h"
@@ -19,12 +20,30 @@ struct CameraKeys {
     return has(k) ? owner(k).number(k) : fallback;
   }
   double positive(const std::string& k) const { return owner(k).positive(k); }
-  int integer(const std::string& k) const {
-    int v = owner(k).integer(k);
-    if (v <= 0) owner(k).fail(k, std::to_string(v), "a positive image size in pixels");
-    return v;
-  }
+  // Image sizes: instant-ngp's colmap2nerf.py writes them as floats (1080.0), which are whole.
+  int imageSize(const std::string& k) const { return owner(k).integer(k, 1, std::numeric_limits<int>::max()); }
 };
+
+// Camera keys, global or per frame, as instant-ngp (scripts/colmap2nerf.py) and Nerfstudio
+// (process_data/colmap_utils.py) write them. camera_angle_y, fovx and fovy restate what the
+// focal lengths or camera_angle_x already say and are not read.
+const char* const kCameraKeys[] = {"camera_model", "fl_x", "fl_y", "cx", "cy", "w", "h",
+                                   "k1", "k2", "k3", "k4", "p1", "p2", "is_fisheye",
+                                   "camera_angle_x", "camera_angle_y", "fovx", "fovy"};
+// Keys those tools write that do not bear on the poses and images read here: Nerfstudio's
+// "applied_transform" (already applied to the poses) and "ply_file_path" (its sparse points);
+// inim capture's "inim_capture" (read by the fitting stage).
+const char* const kIgnoredTopKeys[] = {"applied_transform", "ply_file_path", "inim_capture"};
+// Per frame: instant-ngp's "sharpness"; Nerfstudio's "colmap_im_id", "mask_path" and
+// "depth_file_path" (masks and depths are not used); the Blender set's "rotation".
+const char* const kIgnoredFrameKeys[] = {"sharpness", "colmap_im_id", "mask_path", "depth_file_path", "rotation"};
+
+// Marks `keys` as known, so that rejectUnknown() refuses only what no tool writes (a
+// misspelling such as fl_z).
+template <size_t N>
+void acceptKeys(const JsonObject& o, const char* const (&keys)[N]) {
+  for (const char* k : keys) o.has(k);
+}
 
 glm::dmat4 readMatrix(const JsonObject& frame) {
   const std::string key = "transform_matrix";
@@ -38,7 +57,7 @@ glm::dmat4 readMatrix(const JsonObject& frame) {
       const Json& v = m[row][col];
       if (!v.is_number()) bad("numbers");
       double x = v.get<double>();
-      // nlohmann parses "NaN"/"Infinity" only as strings; huge literals become inf.
+      // JSON has no NaN or Infinity, and readJsonFile refuses literals beyond a double.
       if (!std::isfinite(x)) bad("finite numbers (non-finite pose)");
       r[int(col)][int(row)] = x;  // glm is column-major
     }
@@ -61,13 +80,7 @@ void checkModel(const JsonObject& o) {
 }  // namespace
 
 DatasetManifest readTransformsJson(const std::string& path) {
-  Json root;
-  try {
-    root = readJsonFile(path);
-  } catch (const nlohmann::json::exception& e) {
-    // Beyond syntax errors, e.g. a number literal too large for a double (a non-finite value).
-    throw InputError(path, "", e.what(), "valid JSON with finite numbers");
-  }
+  const Json root = readJsonFile(path);
   if (!root.is_object()) throw InputError(path, "", jsonValueText(root), "a JSON object");
   JsonObject g(root, path, "");
   DatasetManifest man;
@@ -84,8 +97,6 @@ DatasetManifest readTransformsJson(const std::string& path) {
   } else {
     man.format = "nerfstudio";
   }
-  if (g.has("is_fisheye") && g.boolean("is_fisheye", false))
-    g.fail("is_fisheye", "true", "a pinhole camera (fisheye is not supported)");
 
   if (ngp) {
     double aabb = g.has("aabb_scale") ? g.positive("aabb_scale") : 1.0;
@@ -106,6 +117,8 @@ DatasetManifest readTransformsJson(const std::string& path) {
     const JsonObject& f = frames[i];
     CameraKeys c{g, f};
     if (f.has("camera_model")) checkModel(f);
+    if (c.has("is_fisheye") && c.owner("is_fisheye").boolean("is_fisheye", false))
+      c.owner("is_fisheye").fail("is_fisheye", "true", "a pinhole camera (fisheye is not supported)");
     FrameSpec s;
     s.key = f.keyPath("file_path");
     if (!f.has("file_path")) f.fail("file_path", "missing", "the frame's image path");
@@ -114,8 +127,8 @@ DatasetManifest readTransformsJson(const std::string& path) {
     s.cameraToWorld = readMatrix(f);
 
     Intrinsics& k = s.intrinsics;
-    if (c.has("w")) k.width = c.integer("w");
-    if (c.has("h")) k.height = c.integer("h");
+    if (c.has("w")) k.width = c.imageSize("w");
+    if (c.has("h")) k.height = c.imageSize("h");
     if (c.has("fl_x")) {
       k.fx = c.positive("fl_x");
       k.fy = c.has("fl_y") ? c.positive("fl_y") : k.fx;
@@ -146,8 +159,14 @@ DatasetManifest readTransformsJson(const std::string& path) {
     for (const char* key : {"cx", "cy", "k1", "k2", "p1", "p2"})
       if (c.has(key) && !std::isfinite(c.number(key, 0)))
         c.owner(key).fail(key, "non-finite", "a finite number");
+    acceptKeys(f, kCameraKeys);
+    acceptKeys(f, kIgnoredFrameKeys);
+    f.rejectUnknown();
     man.frames.push_back(std::move(s));
   }
+  acceptKeys(g, kCameraKeys);
+  acceptKeys(g, kIgnoredTopKeys);
+  g.rejectUnknown();
   return man;
 }
 

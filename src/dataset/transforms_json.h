@@ -7,8 +7,12 @@
 //   where they override the global values.
 // - instant-ngp: as Nerfstudio, plus optional "aabb_scale", "scale", "offset" (see
 //   Dataset::ngpBox for what is done with them: recorded, never applied to the poses).
-// Unknown keys are ignored (these files carry many tool-specific extras), but keys that would
-// change the camera model and cannot be honoured (k3, k4 non-zero, is_fisheye) are errors.
+// Keys that would change the camera model and cannot be honoured (k3, k4 non-zero,
+// is_fisheye) are errors. The extras those tools write that do not bear on poses or images
+// (instant-ngp's "sharpness", Nerfstudio's "colmap_im_id", "mask_path", "depth_file_path",
+// "applied_transform", "ply_file_path", the Blender set's "rotation", fovx/fovy) are ignored;
+// any other key is an error naming it, so a misspelling (fl_z) is not silently dropped.
+// Whole-number keys (w, h) may be written as floats with no fraction part (1080.0).
 #include <string>
 
 #include "dataset/manifest.h"

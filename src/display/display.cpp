@@ -3,6 +3,7 @@
 #include "display/gap_range.h"
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 
 #include "core/error.h"
 #include "core/output_file.h"
@@ -56,16 +57,17 @@ static T readPart(const JsonObject& o, const std::string& key, const std::string
 
 static void readPair(const JsonObject& o, const std::string& key, int& a, int& b, bool allowScalar) {
   const Json& v = o.raw(key);
-  if (allowScalar && v.is_number_integer() && v.get<int>() >= 1) {
-    a = b = v.get<int>();
+  constexpr int kMax = std::numeric_limits<int>::max();
+  if (allowScalar && v.is_number()) {
+    a = b = o.integer(key, 1, kMax);
     return;
   }
-  if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer() ||
-      v[0].get<int>() < 1 || v[1].get<int>() < 1)
+  if (!v.is_array() || v.size() != 2)
     o.fail(key, jsonValueText(v),
            std::string(allowScalar ? "a whole number >= 1 or " : "") + "[x, y], whole numbers >= 1");
-  a = v[0].get<int>();
-  b = v[1].get<int>();
+  const std::vector<int> p = o.integers(key, 1, kMax);
+  a = p[0];
+  b = p[1];
 }
 
 Display loadDisplay(const std::string& path) {

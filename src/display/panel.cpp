@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "core/error.h"
@@ -147,12 +148,10 @@ static SubpixelLayout parseSubpixels(const JsonObject& o) {
   } else {
     L.type = "custom";
     L.fillFactor = 0.0;
-    const Json& t = o.raw("tile_px");
-    if (!t.is_array() || t.size() != 2 || !t[0].is_number_integer() || !t[1].is_number_integer() ||
-        t[0].get<int>() < 1 || t[1].get<int>() < 1)
-      o.fail("tile_px", jsonValueText(t), "[width, height] in whole pixels, each >= 1");
-    L.tileW = t[0].get<int>();
-    L.tileH = t[1].get<int>();
+    const std::vector<int> t = o.integers("tile_px", 1, std::numeric_limits<int>::max());
+    if (t.size() != 2) o.fail("tile_px", jsonValueText(o.raw("tile_px")), "[width, height] in whole pixels, each >= 1");
+    L.tileW = t[0];
+    L.tileH = t[1];
     auto subs = o.objects("subpixels");
     if (subs.empty()) o.fail("subpixels", "[]", "at least one subpixel");
     for (const auto& s : subs) {
@@ -233,12 +232,11 @@ Panel parsePanel(const JsonObject& o) {
   Panel p;
   p.file = o.file();
   p.name = o.string("name");
-  const Json& res = o.raw("resolution_px");
-  if (!res.is_array() || res.size() != 2 || !res[0].is_number_integer() ||
-      !res[1].is_number_integer() || res[0].get<int>() < 1 || res[1].get<int>() < 1)
-    o.fail("resolution_px", jsonValueText(res), "[width, height] in whole pixels, each >= 1");
-  p.widthPx = res[0].get<int>();
-  p.heightPx = res[1].get<int>();
+  const std::vector<int> res = o.integers("resolution_px", 1, std::numeric_limits<int>::max());
+  if (res.size() != 2)
+    o.fail("resolution_px", jsonValueText(o.raw("resolution_px")), "[width, height] in whole pixels, each >= 1");
+  p.widthPx = res[0];
+  p.heightPx = res[1];
   p.pixelPitchMm = o.positive("pixel_pitch_mm");
 
   JsonObject prim = o.object("primaries");

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -98,15 +99,11 @@ RunFile loadRunFile(const std::string& path) {
              "either \"scale\" (mm per field unit) or \"field_units_per_mm\", not both");
     if (p.has("scale")) {
       pl.scaleKey = p.keyPath("scale");
-      const Json& s = p.raw("scale");
-      if (s.is_number())
-        pl.scale = Vec3d(s.get<double>());
-      else
-        pl.scale = p.vec3("scale");
+      pl.scale = p.raw("scale").is_number() ? Vec3d(p.number("scale")) : p.vec3("scale");
     } else if (p.has("field_units_per_mm")) {
       pl.scaleKey = p.keyPath("field_units_per_mm");
       const Json& s = p.raw("field_units_per_mm");
-      Vec3d u = s.is_number() ? Vec3d(s.get<double>()) : p.vec3("field_units_per_mm");
+      Vec3d u = s.is_number() ? Vec3d(p.number("field_units_per_mm")) : p.vec3("field_units_per_mm");
       if (u.x == 0.0 || u.y == 0.0 || u.z == 0.0 || !finite(u))
         p.fail("field_units_per_mm", jsonValueText(s), "non-zero, finite field units per mm");
       pl.scale = 1.0 / u;
@@ -129,9 +126,7 @@ RunFile loadRunFile(const std::string& path) {
   if (o.has("viewing_distance_mm")) r.viewingDistanceMm = o.positive("viewing_distance_mm");
   if (o.has("layout")) r.layout = o.choice("layout", {"parallel", "toed-in", "lens-grid"});
   if (o.has("spp")) {
-    int s = o.integer("spp");
-    if (s < 1) o.fail("spp", std::to_string(s), "a whole number >= 1");
-    r.spp = s;
+    r.spp = o.integer("spp", 1, std::numeric_limits<int>::max());
   }
   if (o.has("exposure")) {
     const Json& e = o.raw("exposure");

@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/metrics.h"
+#include "core/error.h"
+#include "core/json_config.h"
 #include "radiance/volume_renderer.h"
 
 namespace inim {
@@ -71,11 +73,15 @@ std::vector<ViewScore> evaluate(const VoxelGrid& grid, const Dataset& data, cons
 
 std::string modelMetadata(const Dataset& data) {
   nlohmann::json j = {{"dataset", data.file}, {"format", data.format}, {"units", "dataset"}};
-  // An inim capture records its scene and units in transforms.json.
-  std::ifstream f(data.file);
-  if (f && data.format != "middlebury") {
-    nlohmann::json t = nlohmann::json::parse(f, nullptr, false);
-    if (!t.is_discarded() && t.contains("inim_capture") && t["inim_capture"].is_object()) {
+  // An inim capture records its scene and units in transforms.json (read once already, so
+  // a failure here means the file changed since: the metadata then says less).
+  if (data.format != "middlebury") {
+    nlohmann::json t;
+    try {
+      t = readJsonFile(data.file);
+    } catch (const InputError&) {
+    }
+    if (t.is_object() && t.contains("inim_capture") && t["inim_capture"].is_object()) {
       const auto& c = t["inim_capture"];
       if (c.value("units", "") == "mm") j["units"] = "mm";
       if (c.contains("scene")) j["scene"] = c["scene"];
@@ -88,8 +94,12 @@ Placement defaultPlacementFor(const std::string& metadata) {
   Placement p;
   p.source = "the model's default";
   p.scaleKey = "scale";
-  nlohmann::json j = nlohmann::json::parse(metadata, nullptr, false);
-  const bool mm = !j.is_discarded() && j.is_object() && j.value("units", "") == "mm";
+  nlohmann::json j;
+  try {
+    j = parseJsonText(metadata, "the model's metadata");
+  } catch (const InputError&) {  // not ours: no units
+  }
+  const bool mm = j.is_object() && j.value("units", "") == "mm";
   if (!mm) p.scale = Vec3d(1.0 / 0.0075);  // the paper's NeRF placement: 0.0075 field units per mm
   return p;
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 
 #include "core/error.h"
@@ -258,9 +259,8 @@ ReflectanceTexture parseReflectance(const JsonObject& m, const std::string& key)
             break;
           case TextureType::SlantedEdge: p.angle_deg = float(o.number("angle_deg", 5.0)); break;
           case TextureType::SiemensStar:
-            p.spokes = o.integer("spokes", 36);
+            p.spokes = o.has("spokes") ? o.integer("spokes", 1, std::numeric_limits<int>::max()) : 36;
             p.radius_mm = float(o.positive("radius_mm", 10.0));
-            if (p.spokes < 1) o.fail("spokes", std::to_string(p.spokes), "an integer >= 1");
             break;
           default: {  // scale target
             std::vector<double> sz = o.numbers("size_mm");
@@ -271,8 +271,7 @@ ReflectanceTexture parseReflectance(const JsonObject& m, const std::string& key)
             p.line_mm = float(o.positive("line_mm", 0.25));
             p.period_mm = float(o.positive("period_mm", 2.0));
             p.angle_deg = float(o.number("angle_deg", 5.0));
-            p.spokes = o.integer("spokes", 24);
-            if (p.spokes < 1) o.fail("spokes", std::to_string(p.spokes), "an integer >= 1");
+            p.spokes = o.has("spokes") ? o.integer("spokes", 1, std::numeric_limits<int>::max()) : 24;
             break;
           }
         }
@@ -620,8 +619,7 @@ struct Loader {
     IntegratorSettings& s = d.integrator;
     s.type = o.choice("type", {"direct", "path"}, "direct") == "path" ? IntegratorSettings::Type::Path
                                                                       : IntegratorSettings::Type::Direct;
-    s.maxDepth = o.integer("max_depth", 8);
-    if (s.maxDepth < 0 || s.maxDepth > 1000) o.fail("max_depth", std::to_string(s.maxDepth), "an integer in [0, 1000]");
+    s.maxDepth = o.has("max_depth") ? o.integer("max_depth", 0, 1000) : 8;
     std::string ls = o.choice("light_sampling", {"power", "uniform", "all"}, "power");
     s.lightSelection = ls == "power" ? LightSelection::Power : ls == "uniform" ? LightSelection::Uniform : LightSelection::All;
     s.rrDepth = o.integer("rr_depth", 3);
