@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages inim needs (only those missing) and builds it (Release, -j2).
 # Usage: scripts/setup.sh [TARGET...]   (run by run-default.sh and test.sh; default: all targets)
+#        scripts/setup.sh --packages-only [PACKAGE...]   (install inim's packages and these, no build)
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${INIM_BUILD_DIR:-$ROOT/build/release}"
@@ -9,6 +10,12 @@ PACKAGES=(build-essential cmake pkg-config libembree-dev libopenexr-dev libopenc
           libglm-dev libtbb-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
           libcli11-dev libgtest-dev libbenchmark-dev libcairo2-dev libpango1.0-dev libfontconfig-dev
           fonts-dejavu-core opencolorio-tools)
+PACKAGES_ONLY=0
+if [ "${1:-}" = "--packages-only" ]; then
+  PACKAGES_ONLY=1
+  shift
+  PACKAGES+=("$@")
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -23,6 +30,8 @@ if [ ${#missing[@]} -gt 0 ]; then
 else
   echo "setup: all Debian packages present"
 fi
+
+if [ "$PACKAGES_ONLY" -eq 1 ]; then exit 0; fi
 
 echo "setup: configuring and building Release in $BUILD_DIR (-j2)"
 cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
