@@ -57,6 +57,9 @@ void writeImage(const Image& img, const std::string& path) {
   int a = img.channelIndex("A");
   spec.alpha_channel = a;
   if (isExr) spec.attribute("compression", "zip");
+  // OIIO stamps EXRs with the time of writing unless DateTime is set; empty writes none, so
+  // identical runs give identical bytes.
+  spec.attribute("DateTime", "");
   if (!out->open(path, spec)) throw std::runtime_error("cannot open " + path + ": " + out->geterror());
   bool ok;
   if (isExr) {

@@ -1,7 +1,7 @@
 // The outputs of real `inim eia` runs: a run stopped by SIGINT or SIGTERM while writing exits
 // with 128 + the signal, leaves no temporary and the previous run's outputs byte for byte; a
 // run killed outright (SIGKILL) leaves temporaries that the next run into the folder removes,
-// sparing those of live processes.
+// sparing those of live processes; two identical runs give byte-identical EXR, PNG and SDF.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -177,4 +177,18 @@ TEST(CliOutputs, KilledRunsTemporariesAreRemovedByTheNextRunLiveOnesKept) {
   EXPECT_EQ(temporaries(dir), std::vector<std::string>{live});
   EXPECT_TRUE(fs::exists(dir + "/small.exr") && fs::exists(dir + "/small.png") && fs::exists(dir + "/small.sdf"));
   fs::remove_all(dir);
+}
+
+TEST(CliOutputs, IdenticalRunsGiveByteIdenticalFiles) {
+  const std::string a = folder("same_a"), b = folder("same_b");
+  CliResult r = runInimBinary(binary(), eiaArgs(smallDisplay(), a));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // a time stamp in a header would differ
+  r = runInimBinary(binary(), eiaArgs(smallDisplay(), b));
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const auto& f : kOutputs) {
+    const std::string first = readBytes(a + "/" + f);
+    EXPECT_GT(first.size(), 200u) << f;
+    EXPECT_TRUE(first == readBytes(b + "/" + f)) << f << " differs between identical runs";
+  }
 }

@@ -1,6 +1,7 @@
 // OutputSet and writeImage under failure and interruption: old outputs stay intact until a
 // commit, temporaries never outlive their run (stale ones of dead processes are swept, those of
-// live processes are not), and SIGINT/SIGTERM turn into Interrupted at the polling points.
+// live processes are not), SIGINT/SIGTERM turn into Interrupted at the polling points, and the
+// same image written twice gives the same bytes (no time stamp in the EXR header).
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
 #include <signal.h>
@@ -177,4 +178,23 @@ TEST_F(InterruptTest, InterruptedRunRemovesItsTemporariesAndKeepsOldOutputs) {
   EXPECT_EQ(readBytes(txt), "old");
   EXPECT_EQ(hiddenTemporaries(dir), 0);
   EXPECT_FALSE(fs::exists(dir + "/more.exr"));
+}
+
+TEST(WriteImage, SameImageTwiceGivesTheSameBytesWithoutATimeStamp) {
+  const std::string dir = folder("bytes");
+  const Image img = gradient(57, 300);  // 300 rows: the last band of rows is partial
+  for (const std::string ext : {".exr", ".png"}) {
+    writeImage(img, dir + "/a" + ext);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // a time stamp would change
+    writeImage(img, dir + "/b" + ext);
+    const std::string a = readBytes(dir + "/a" + ext);
+    EXPECT_GT(a.size(), 100u) << ext;
+    EXPECT_TRUE(a == readBytes(dir + "/b" + ext)) << ext << " files differ";
+    auto in = OIIO::ImageInput::open(dir + "/a" + ext);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().find_attribute("DateTime"), nullptr) << ext;
+  }
+  const Image back = readImage(dir + "/a.exr");
+  ASSERT_EQ(back.data.size(), img.data.size());
+  EXPECT_TRUE(back.data == img.data);  // float EXR: exact, band by band
 }
