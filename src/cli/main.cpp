@@ -5,8 +5,10 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 
 int main(int argc, char** argv) {
+  inim::installInterruptHandlers();  // Ctrl-C / SIGTERM: unwind (removing temporaries), exit 130 / 143
   CLI::App app{"inim: spectral simulator for integral-imaging light-field displays"};
   app.set_version_flag("--version", std::string("inim ") + INIM_VERSION);
   app.require_subcommand(1);
@@ -29,6 +31,9 @@ int main(int argc, char** argv) {
   inim::cli::addBenchCommand(app);
   try {
     app.parse(argc, argv);
+  } catch (const inim::Interrupted& e) {
+    std::fprintf(stderr, "inim: interrupted by signal %d; unfinished outputs removed\n", e.signal);
+    return e.exitStatus();
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
     return code == 0 ? 0 : inim::kExitBadInput;
@@ -39,5 +44,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "inim: failed: %s\n", e.what());
     return 1;
   }
+  // A signal after the last commit: the outputs are whole, but the stop request is still told.
+  if (int sig = inim::interruptSignal()) return inim::Interrupted{sig}.exitStatus();
   return 0;
 }

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 
 namespace inim {
 
@@ -16,9 +17,37 @@ int Image::channelIndex(const std::string& name) const {
   return it == channels.end() ? -1 : int(it - channels.begin());
 }
 
+namespace {
+
+// Writes the pixels in bands of rows, polling for Ctrl-C between bands so that a large
+// image's write stops promptly (the caller's OutputSet removes the partial file).
+bool writeRowBands(OIIO::ImageOutput& out, int width, int height, int channels, OIIO::TypeDesc type,
+                   const void* pixels) {
+  constexpr int kBandRows = 128;  // a multiple of EXR's zip block (16 rows)
+  const size_t rowBytes = size_t(width) * size_t(channels) * type.size();
+  for (int y = 0; y < height; y += kBandRows) {
+    throwIfInterrupted();
+    const int y1 = std::min(height, y + kBandRows);
+    if (!out.write_scanlines(y, y1, 0, type, static_cast<const char*>(pixels) + size_t(y) * rowBytes)) return false;
+  }
+  return true;
+}
+
+std::vector<unsigned char> toBytes(const std::vector<float>& data) {
+  std::vector<unsigned char> bytes(data.size());
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    float v = std::isfinite(data[i]) ? std::clamp(data[i], 0.0f, 1.0f) : 0.0f;
+    bytes[i] = static_cast<unsigned char>(std::lround(v * 255.0f));
+  }
+  return bytes;
+}
+
+}  // namespace
+
 void writeImage(const Image& img, const std::string& path) { writeImage(img, path, {}); }
 
 void writeImage(const Image& img, const std::string& path, const ImageNumbers& numbers) {
+  throwIfInterrupted();
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw std::runtime_error("cannot create image writer for " + path + ": " + OIIO::geterror());
   std::string ext = std::filesystem::path(path).extension().string();
@@ -32,17 +61,16 @@ void writeImage(const Image& img, const std::string& path, const ImageNumbers& n
   if (isExr) spec.attribute("compression", "zip");
   for (const auto& [name, value] : numbers)
     if (isExr) spec.attribute(name, OIIO::TypeDesc::DOUBLE, &value);
+  // OIIO stamps EXRs with the time of writing unless DateTime is set; empty writes none, so
+  // identical runs give identical bytes.
+  spec.attribute("DateTime", "");
   if (!out->open(path, spec)) throw std::runtime_error("cannot open " + path + ": " + out->geterror());
   bool ok;
   if (isExr) {
-    ok = out->write_image(OIIO::TypeDesc::FLOAT, img.data.data());
+    ok = writeRowBands(*out, img.width, img.height, img.numChannels(), OIIO::TypeDesc::FLOAT, img.data.data());
   } else {
-    std::vector<unsigned char> bytes(img.data.size());
-    for (size_t i = 0; i < bytes.size(); ++i) {
-      float v = std::isfinite(img.data[i]) ? std::clamp(img.data[i], 0.0f, 1.0f) : 0.0f;
-      bytes[i] = static_cast<unsigned char>(std::lround(v * 255.0f));
-    }
-    ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    const std::vector<unsigned char> bytes = toBytes(img.data);
+    ok = writeRowBands(*out, img.width, img.height, img.numChannels(), OIIO::TypeDesc::UINT8, bytes.data());
   }
   if (!ok || !out->close()) throw std::runtime_error("cannot write " + path + ": " + out->geterror());
 }

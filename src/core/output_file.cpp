@@ -1,17 +1,78 @@
 #include "core/output_file.h"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <regex>
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 
 namespace fs = std::filesystem;
 
 namespace inim {
+
+namespace {
+
+std::string temporaryName(const fs::path& finalPath, pid_t pid) {
+  return "." + finalPath.stem().string() + ".tmp" + std::to_string(pid) + finalPath.extension().string();
+}
+
+// The process id in an inim temporary's name (as temporaryName makes it), or 0 if `name` is
+// not one.
+pid_t temporaryPid(const std::string& name) {
+  static const std::regex pattern(R"(^\..+\.tmp([1-9][0-9]{0,9})(\.[^.]*)?$)");
+  std::smatch m;
+  if (!std::regex_match(name, m, pattern)) return 0;
+  const long long pid = std::stoll(m[1].str());
+  return pid <= std::numeric_limits<pid_t>::max() ? pid_t(pid) : 0;
+}
+
+// Alive unless the kernel says there is no such process (EPERM: someone else's, alive).
+bool processAlive(pid_t pid) { return kill(pid, 0) == 0 || errno != ESRCH; }
+
+// fsync, so that a crash after the rename cannot leave an empty or partial output.
+void syncFile(const std::string& path) {
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0 || fsync(fd) != 0) {
+    const std::string why = std::strerror(errno);
+    if (fd >= 0) close(fd);
+    throw std::runtime_error("cannot flush " + path + " to disk: " + why);
+  }
+  close(fd);
+}
+
+// fsync of a folder makes its renames durable. Best effort: some file systems refuse it, and
+// the outputs are already in place.
+void syncFolder(const std::string& folder) {
+  const int fd = open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  fsync(fd);
+  close(fd);
+}
+
+}  // namespace
+
+int removeStaleTemporaries(const std::string& folder) {
+  std::error_code ec;
+  int removed = 0;
+  for (fs::directory_iterator it(folder.empty() ? "." : folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const pid_t pid = temporaryPid(it->path().filename().string());
+    std::error_code statEc;
+    if (pid == 0 || processAlive(pid) || it->symlink_status(statEc).type() != fs::file_type::regular) continue;
+    if (fs::remove(it->path(), statEc)) ++removed;
+  }
+  return removed;
+}
 
 OutputSet::~OutputSet() {
   if (committed_) return;
@@ -26,19 +87,28 @@ std::string OutputSet::add(const std::string& finalPath) {
     fs::create_directories(p.parent_path(), ec);
     if (ec) throw InputError(finalPath, "", "", "a writable output folder (" + ec.message() + ")");
   }
-  fs::path tmp = p.parent_path() /
-                 ("." + p.stem().string() + ".tmp" + std::to_string(getpid()) + p.extension().string());
+  const std::string folder = p.parent_path().string();
+  if (std::find(folders_.begin(), folders_.end(), folder) == folders_.end()) {
+    removeStaleTemporaries(folder);
+    folders_.push_back(folder);
+  }
+  const fs::path tmp = p.parent_path() / temporaryName(p, getpid());
   entries_.push_back({tmp.string(), finalPath});
   return tmp.string();
 }
 
 void OutputSet::commit() {
+  throwIfInterrupted();
+  for (const auto& e : entries_) syncFile(e.tmp);
+  throwIfInterrupted();  // the last point at which stopping leaves every old output as it was
+  // No polling from here: a signal now waits for all renames, so the outputs change together.
   for (const auto& e : entries_) {
     std::error_code ec;
     fs::rename(e.tmp, e.final, ec);
     if (ec) throw std::runtime_error("cannot move " + e.tmp + " to " + e.final + ": " + ec.message());
   }
   committed_ = true;
+  for (const auto& folder : folders_) syncFolder(folder);
 }
 
 std::string dataDir() {

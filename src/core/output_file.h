@@ -1,6 +1,8 @@
 #pragma once
 // Outputs are written to a temporary file beside the target and renamed into place only
-// when every output of a run succeeded, so a failed run never leaves partial output.
+// when every output of a run succeeded, so a failed or interrupted run never leaves partial
+// output and the old outputs stay intact. Temporaries are named .<stem>.tmp<pid><ext>; those
+// of dead processes (killed, power loss) are removed by the next run into the same folder.
 #include <string>
 #include <vector>
 
@@ -14,16 +16,24 @@ class OutputSet {
   OutputSet& operator=(const OutputSet&) = delete;
 
   // Returns the temporary path to write for `finalPath` (same folder and extension, so
-  // format-by-extension writers still work). Creates the folder if needed.
+  // format-by-extension writers still work). Creates the folder if needed and removes stale
+  // temporaries of dead processes there.
   std::string add(const std::string& finalPath);
-  // Renames every temporary into place.
+  // Flushes every temporary to disk, then renames all into place and flushes the folders.
+  // Throws Interrupted (core/interrupt.h) instead if a signal came first; a signal during the
+  // renames waits for them, so the outputs of one run change together.
   void commit();
 
  private:
   struct Entry { std::string tmp, final; };
   std::vector<Entry> entries_;
+  std::vector<std::string> folders_;  // of the entries: swept once, flushed after the renames
   bool committed_ = false;
 };
+
+// Removes inim's temporaries (.<stem>.tmp<pid><ext>) in `folder` whose process is gone;
+// returns how many. Other files, and temporaries of live processes, are left alone.
+int removeStaleTemporaries(const std::string& folder);
 
 // Writes `text` to `path` (a temporary from OutputSet::add, usually); throws if the file cannot
 // be written completely.

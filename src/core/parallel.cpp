@@ -5,6 +5,7 @@
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 
+#include "core/interrupt.h"
 #include "core/progress.h"
 
 namespace inim {
@@ -23,6 +24,7 @@ void parallelForTiles(int width, int height, const std::function<void(const Tile
   int nx = (width + tileSize - 1) / tileSize, ny = (height + tileSize - 1) / tileSize;
   tbb::parallel_for(tbb::blocked_range<int>(0, nx * ny, 1), [&](const tbb::blocked_range<int>& r) {
     for (int t = r.begin(); t != r.end(); ++t) {
+      throwIfInterrupted();  // cancels the loop; TBB rethrows in the caller
       int tx = t % nx, ty = t / nx;
       Tile tile{tx * tileSize, ty * tileSize, std::min(width, (tx + 1) * tileSize),
                 std::min(height, (ty + 1) * tileSize)};
@@ -36,6 +38,7 @@ void parallelForRange(int64_t count, const std::function<void(int64_t, int64_t)>
                       ProgressBar* progress, int64_t grain) {
   tbb::parallel_for(tbb::blocked_range<int64_t>(0, count, size_t(grain)),
                     [&](const tbb::blocked_range<int64_t>& r) {
+                      throwIfInterrupted();
                       fn(r.begin(), r.end());
                       if (progress) progress->add(uint64_t(r.end() - r.begin()));
                     });

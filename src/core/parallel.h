@@ -1,6 +1,6 @@
 #pragma once
 // Parallel loops over tiles and ranges on TBB. The work for an index never depends on
-// which thread runs it, so results are bit-identical for any thread count.
+// which thread runs it, so results are bit-identical for any thread count. Interrupted (core/interrupt.h) stops them.
 #include <cstdint>
 #include <functional>
 #include <memory>

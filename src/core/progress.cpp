@@ -4,6 +4,8 @@
 
 #include <cstdio>
 
+#include "core/interrupt.h"
+
 namespace inim {
 
 bool ProgressBar::stderrIsTerminal() { return isatty(STDERR_FILENO) == 1; }
@@ -15,6 +17,7 @@ ProgressBar::ProgressBar(std::string label, uint64_t total, bool enabled)
 ProgressBar::~ProgressBar() { finish(); }
 
 void ProgressBar::add(uint64_t n) {
+  throwIfInterrupted();  // long work reports here, so it stops promptly on Ctrl-C
   uint64_t done = done_.fetch_add(n) + n;
   if (!enabled_) return;
   auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(

@@ -12,7 +12,7 @@ class ProgressBar {
  public:
   ProgressBar(std::string label, uint64_t total, bool enabled = stderrIsTerminal());
   ~ProgressBar();
-  void add(uint64_t n);  // thread safe
+  void add(uint64_t n);  // thread safe; throws Interrupted after SIGINT/SIGTERM (core/interrupt.h)
   void finish();
   static bool stderrIsTerminal();
 

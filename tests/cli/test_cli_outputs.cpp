@@ -1,0 +1,194 @@
+// The outputs of real `inim eia` runs: a run stopped by SIGINT or SIGTERM while writing exits
+// with 128 + the signal, leaves no temporary and the previous run's outputs byte for byte; a
+// run killed outright (SIGKILL) leaves temporaries that the next run into the folder removes,
+// sparing those of live processes; two identical runs give byte-identical EXR, PNG and SDF.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/cli_helpers.h"
+#include "cli/run_cli.h"
+#include "scratch_dir.h"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+using fixtures::readBytes;
+
+namespace {
+
+std::string binary() {
+  if (const char* b = std::getenv("INIM_TEST_BINARY"); b && *b) return b;
+  return INIM_BINARY;
+}
+
+ScratchDir scratchFolder("test_cli_outputs");
+
+// A fresh folder in the scratch folder.
+std::string folder(const std::string& name) {
+  const std::string dir = scratchFolder.path(name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// 100 x 60 EIs of 15 px: a 1506 x 906 px EIA and a 130 MB SDF, about a second of writing.
+std::string largeDisplay() {
+  static const std::string file = [] {
+    const std::string f = scratchFolder.path("large.json");
+    writeText(f, fixtures::smallDisplayJson({.cols = 100, .rows = 60, .eiPx = 15, .lensPitchMm = 1.5}));
+    return f;
+  }();
+  return file;
+}
+
+std::string smallDisplay() {
+  static const std::string file = [] {
+    const std::string f = scratchFolder.path("small.json");
+    writeText(f, smallDisplayJson(11, 9, 9));
+    return f;
+  }();
+  return file;
+}
+
+// `inim eia` of the default scene into dir/<stem>.exr, .png and .sdf.
+std::string eiaArgs(const std::string& display, const std::string& dir, const std::string& stem = "eia") {
+  return "eia --quiet --display " + display + " --out " + dir + "/" + stem + ".exr --sdf " + dir + "/" + stem + ".sdf";
+}
+
+// Starts inim with `args` (split at spaces), output to `log`. SIGINT and SIGTERM start at their
+// default actions: a test run as a background job would otherwise pass them on ignored.
+pid_t spawnInim(const std::string& args, const std::string& log) {
+  std::vector<std::string> words = {binary()};
+  std::istringstream in(args);
+  for (std::string w; in >> w;) words.push_back(w);
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&files, STDOUT_FILENO, STDERR_FILENO);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t defaults, none;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  sigaddset(&defaults, SIGTERM);
+  sigemptyset(&none);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
+  pid_t pid = -1;
+  if (posix_spawn(&pid, argv[0], &files, &attr, argv.data(), environ) != 0) pid = -1;
+  posix_spawn_file_actions_destroy(&files);
+  posix_spawnattr_destroy(&attr);
+  return pid;
+}
+
+// The names in `dir` that contain ".tmp" (+ `pid`, if given).
+std::vector<std::string> temporaries(const std::string& dir, pid_t pid = 0) {
+  const std::string mark = ".tmp" + (pid ? std::to_string(pid) : std::string());
+  std::vector<std::string> found;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().find(mark) != std::string::npos) found.push_back(e.path().filename().string());
+  return found;
+}
+
+// Waits until `pid` has a temporary in `dir` (it is writing its outputs); false if it ended
+// first or took more than a minute.
+bool waitUntilWriting(const std::string& dir, pid_t pid) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+  while (std::chrono::steady_clock::now() < end) {
+    if (!temporaries(dir, pid).empty()) return true;
+    if (waitpid(pid, nullptr, WNOHANG) == pid) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return false;
+}
+
+int waitStatus(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+const std::vector<std::string> kOutputs = {"eia.exr", "eia.png", "eia.sdf"};
+
+class CliInterrupt : public ::testing::TestWithParam<int> {};
+
+}  // namespace
+
+TEST_P(CliInterrupt, StoppedWhileWritingExitsCleanlyAndKeepsTheOldOutputs) {
+  const int sig = GetParam();
+  const std::string dir = folder("stop" + std::to_string(sig));
+  CliResult first = runInimBinary(binary(), eiaArgs(largeDisplay(), dir));
+  ASSERT_EQ(first.status, 0) << first.output;
+  std::vector<std::string> old;
+  for (const auto& f : kOutputs) old.push_back(readBytes(dir + "/" + f));
+
+  // Another exposure: had this run committed, every output would differ.
+  const std::string log = dir + "/../stop.log";
+  const pid_t pid = spawnInim(eiaArgs(largeDisplay(), dir) + " --exposure 0.3", log);
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(waitUntilWriting(dir, pid)) << readBytes(log);
+  kill(pid, sig);
+  const int status = waitStatus(pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << WTERMSIG(status) << "\n" << readBytes(log);
+  EXPECT_EQ(WEXITSTATUS(status), 128 + sig) << readBytes(log);
+  EXPECT_NE(readBytes(log).find("interrupted"), std::string::npos) << readBytes(log);
+  EXPECT_EQ(temporaries(dir), std::vector<std::string>{});
+  for (size_t i = 0; i < kOutputs.size(); ++i)
+    EXPECT_TRUE(readBytes(dir + "/" + kOutputs[i]) == old[i]) << kOutputs[i] << " changed";
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(IntAndTerm, CliInterrupt, ::testing::Values(SIGINT, SIGTERM),
+                         [](const auto& info) { return std::string(info.param == SIGINT ? "SIGINT" : "SIGTERM"); });
+
+TEST(CliOutputs, KilledRunsTemporariesAreRemovedByTheNextRunLiveOnesKept) {
+  const std::string dir = folder("killed"), log = dir + "/../killed.log";
+  const pid_t pid = spawnInim(eiaArgs(largeDisplay(), dir), log);
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(waitUntilWriting(dir, pid)) << readBytes(log);
+  kill(pid, SIGKILL);  // cannot be caught: the temporaries stay behind
+  const int status = waitStatus(pid);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const std::vector<std::string> stale = temporaries(dir, pid);
+  ASSERT_FALSE(stale.empty());
+  const std::string live = ".eia.tmp" + std::to_string(getpid()) + ".exr";  // this test: alive
+  writeText(dir + "/" + live, "in progress");
+
+  CliResult next = runInimBinary(binary(), eiaArgs(smallDisplay(), dir, "small"));
+  ASSERT_EQ(next.status, 0) << next.output;
+  for (const auto& f : stale) EXPECT_FALSE(fs::exists(dir + "/" + f)) << f << " was left";
+  EXPECT_EQ(readBytes(dir + "/" + live), "in progress");
+  EXPECT_EQ(temporaries(dir), std::vector<std::string>{live});
+  EXPECT_TRUE(fs::exists(dir + "/small.exr") && fs::exists(dir + "/small.png") && fs::exists(dir + "/small.sdf"));
+  fs::remove_all(dir);
+}
+
+TEST(CliOutputs, IdenticalRunsGiveByteIdenticalFiles) {
+  const std::string a = folder("same_a"), b = folder("same_b");
+  CliResult r = runInimBinary(binary(), eiaArgs(smallDisplay(), a));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // a time stamp in a header would differ
+  r = runInimBinary(binary(), eiaArgs(smallDisplay(), b));
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const auto& f : kOutputs) {
+    const std::string first = readBytes(a + "/" + f);
+    EXPECT_GT(first.size(), 200u) << f;
+    EXPECT_TRUE(first == readBytes(b + "/" + f)) << f << " differs between identical runs";
+  }
+}
