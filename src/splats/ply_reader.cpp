@@ -1,5 +1,7 @@
 #include "splats/ply_reader.h"
 
+#include <cctype>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -103,9 +105,10 @@ PlyFile PlyFile::parse(std::string path, std::vector<char> bytes) {
     if (word == "format") {
       std::string fmt, version;
       ls >> fmt >> version;
-      if (fmt != "binary_little_endian")
+      if (fmt != "binary_little_endian" && fmt != "ascii")
         throw InputError(f.path_, "format", "\"" + fmt + " " + version + "\"",
-                         "binary_little_endian (ascii and big-endian splat files are not supported)");
+                         "binary_little_endian or ascii (big-endian splat files are not supported)");
+      f.ascii_ = fmt == "ascii";
       sawFormat = true;
     } else if (word == "element") {
       PlyElement e;
@@ -134,6 +137,10 @@ PlyFile PlyFile::parse(std::string path, std::vector<char> bytes) {
     }
   }
   if (!sawFormat) throw InputError(f.path_, "format", "missing", "a 'format binary_little_endian 1.0' line");
+  if (f.ascii_) {
+    f.convertAscii(dataStart);
+    return f;
+  }
   // Rows must fit the file: checked before anyone allocates per row.
   size_t offset = dataStart;
   for (PlyElement& e : f.elements_) {
@@ -161,9 +168,51 @@ const PlyElement& PlyFile::element(const std::string& name) const {
   throw InputError(path_, name, "missing", "an element '" + name + "'");
 }
 
+// ASCII rows become float64 slots, one per property, so value() reads them like binary ones.
+// Each value takes at least 2 characters (a digit and a separator): the counts are checked
+// against that before the table is allocated.
+void PlyFile::convertAscii(size_t dataStart) {
+  size_t slots = 0;
+  for (const PlyElement& e : elements_) {
+    const size_t maxRows = e.properties.empty() ? e.count : (bytes_.size() - dataStart) / 2 / e.properties.size() + 1;
+    if (e.count > maxRows)
+      throw InputError(path_, e.name, "count " + std::to_string(e.count),
+                       "at most " + std::to_string(maxRows) + " ascii rows in the " + std::to_string(bytes_.size() - dataStart) +
+                           " bytes after the header: truncated?");
+    slots += e.count * e.properties.size();
+  }
+  std::vector<char> table(slots * sizeof(double));
+  std::string text(bytes_.begin() + std::ptrdiff_t(dataStart), bytes_.end());
+  const char* cur = text.c_str();
+  size_t offset = 0;
+  for (PlyElement& e : elements_) {
+    e.stride = e.properties.size() * sizeof(double);
+    for (size_t k = 0; k < e.properties.size(); ++k) e.properties[k].offset = k * sizeof(double);
+    e.dataOffset = offset;
+    for (size_t row = 0; row < e.count; ++row)
+      for (const PlyProperty& p : e.properties) {
+        while (*cur == ' ' || *cur == '\t' || *cur == '\r' || *cur == '\n') ++cur;
+        if (*cur == '\0')
+          throw InputError(path_, e.name, "count " + std::to_string(e.count),
+                           "as many ascii rows (the file ends in row " + std::to_string(row) + ")");
+        char* end = nullptr;
+        const double v = std::strtod(cur, &end);
+        if (end == cur || (*end != '\0' && !std::isspace(static_cast<unsigned char>(*end)))) {
+          std::string token(cur, std::strcspn(cur, " \t\r\n"));
+          throw InputError(path_, e.name + "." + p.name, "\"" + token + "\" (row " + std::to_string(row) + ")", "a number");
+        }
+        std::memcpy(&table[offset], &v, sizeof v);
+        offset += sizeof v;
+        cur = end;
+      }
+  }
+  bytes_ = std::move(table);
+}
+
 double PlyFile::value(const PlyElement& e, size_t row, int property) const {
   const PlyProperty& p = e.properties[size_t(property)];
   const char* at = bytes_.data() + e.dataOffset + row * e.stride + p.offset;
+  if (ascii_) return load<double>(at);
   switch (p.type) {
     case PlyType::Int8: return load<int8_t>(at);
     case PlyType::UInt8: return load<uint8_t>(at);

@@ -1,10 +1,10 @@
 #pragma once
-// A binary little-endian PLY file held in memory: its header (elements and their scalar
-// properties, looked up by name) and typed access to the rows. Enough for the splat layouts
+// A PLY file (binary little-endian or ascii) held in memory: its header (elements and their
+// scalar properties, looked up by name) and typed access to the rows. Enough for the splat layouts
 // (splats/splat_loaders.h), which name their properties but do not agree on order, normals,
 // comments or types. Every element's row count is checked against the file size when the
 // header is read, before any caller allocates for it; bytes after the last element are
-// allowed (some writers leave them).
+// allowed (some writers leave them). ASCII rows are parsed once into float64 slots.
 //
 //   PlyFile ply = PlyFile::read("scene.ply");
 //   const PlyElement& v = ply.element("vertex");       // InputError when absent
@@ -55,6 +55,8 @@ class PlyFile {
   std::string path_;
   std::vector<char> bytes_;
   std::vector<PlyElement> elements_;
+  bool ascii_ = false;
+  void convertAscii(size_t dataStart);
 };
 
 }  // namespace inim

@@ -2,7 +2,7 @@
 // Gaussian-splat files -> Gaussians (splats/gaussians.h), activated as the INRIA trainer does.
 //
 //  - INRIA PLY (the trainer's point_cloud.ply, and Polycam, Luma, Nerfstudio splatfacto exports):
-//    binary little-endian element `vertex` with properties found BY NAME: x y z, optional
+//    binary little-endian (or ascii) element `vertex` with properties found BY NAME: x y z, optional
 //    nx ny nz, f_dc_0..2, f_rest_0..(0|9|24|45) (SH degree 0..3, channel-major), opacity
 //    (sigmoid), scale_0..2 (exp), rot_0..3 (w first, normalised); any scalar type (float,
 //    double, uchar, ...); other properties, comments and bytes after the last element ignored.
@@ -16,10 +16,10 @@
 //    (already exp), RGBA uint8 = 255 (0.5 + C0 f_dc), 255 sigmoid(opacity), quaternion uint8 x 4
 //    = 128 (w, x, y, z) + 128. SH degree 0.
 //
-// Bad input is an InputError(file, "element.property", value, expected): unsupported format
-// (ascii, big-endian), truncated data or a row count the file cannot hold (checked before
-// allocating), a missing property, NaN/Inf, a zero-length quaternion, a log-scale whose exp
-// overflows, no splats.
+// Bad input is an InputError(file, "element.property", value, expected): an unsupported format
+// (big-endian, unknown), a malformed ascii number, truncated data or a row count the file
+// cannot hold (checked before allocating), a missing property, NaN/Inf, a zero-length
+// quaternion, a log-scale whose exp overflows, no splats.
 //
 //   Gaussians g = loadGaussians("scenes/splats/guitar.compressed.ply");
 #include <string>

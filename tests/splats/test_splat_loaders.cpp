@@ -198,8 +198,8 @@ std::string goodPly(const PlyOptions& o = {}, int n = 3) {
   return makePly(names, inriaRows(names, n), o);
 }
 
-TEST(SplatLoadersBadInput, AsciiAndBigEndianAreRejected) {
-  for (const char* fmt : {"ascii 1.0", "binary_big_endian 1.0"}) {
+TEST(SplatLoadersBadInput, BigEndianAndUnknownFormatsAreRejected) {
+  for (const char* fmt : {"binary_big_endian 1.0", "binary_middle_endian 1.0"}) {
     PlyOptions o;
     o.format = fmt;
     const std::string path = scratchFile("splats_fmt.ply", goodPly(o));
@@ -208,6 +208,63 @@ TEST(SplatLoadersBadInput, AsciiAndBigEndianAreRejected) {
     EXPECT_EQ(e.key(), "format");
     EXPECT_NE(e.value().find(fmt), std::string::npos);
   }
+}
+
+// ASCII rows: the header of makePly with the values written as text.
+std::string asciiPly(const std::vector<std::string>& names, const std::vector<std::vector<std::string>>& rows, long declared = -1) {
+  std::string s = "ply\nformat ascii 1.0\ncomment written by hand\nelement vertex " +
+                  std::to_string(declared >= 0 ? size_t(declared) : rows.size()) + "\n";
+  for (const std::string& n : names) s += "property float " + n + "\n";
+  s += "end_header\n";
+  for (const auto& r : rows) {
+    for (const std::string& v : r) s += v + " ";
+    s += "\n";
+  }
+  return s;
+}
+
+std::vector<std::vector<std::string>> asText(const std::vector<std::vector<double>>& rows) {
+  std::vector<std::vector<std::string>> out;
+  for (const auto& r : rows) {
+    out.emplace_back();
+    for (double v : r) {
+      char buf[40];
+      std::snprintf(buf, sizeof buf, "%.9g", double(float(v)));  // the binary file's float, exactly
+      out.back().push_back(buf);
+    }
+  }
+  return out;
+}
+
+TEST(SplatLoaders, AsciiPlyGivesTheBinaryFilesGaussians) {
+  const std::vector<std::string> names = inriaNames(24);
+  const auto rows = inriaRows(names, 5);
+  const Gaussians bin = loadGaussians(scratchFile("splats_bin.ply", makePly(names, rows)));
+  const Gaussians asc = loadGaussians(scratchFile("splats_ascii.ply", asciiPly(names, asText(rows))));
+  ASSERT_EQ(asc.size(), 5u);
+  EXPECT_EQ(asc.shDegree, 2);
+  for (size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(asc.position[i], bin.position[i]);
+    EXPECT_EQ(asc.rotation[i], bin.rotation[i]);
+    EXPECT_EQ(asc.scale[i], bin.scale[i]);
+    EXPECT_EQ(asc.opacity[i], bin.opacity[i]);
+  }
+  EXPECT_EQ(asc.sh, bin.sh);
+}
+
+TEST(SplatLoadersBadInput, AsciiMalformedNumberOrTooFewRows) {
+  const std::vector<std::string> names = inriaNames(0);
+  auto rows = asText(inriaRows(names, 3));
+  rows[2][1] = "1.5e";  // y of splat 2
+  const std::string bad = scratchFile("splats_ascii_bad.ply", asciiPly(names, rows));
+  InputError e = expectInputError([&] { loadGaussians(bad); });
+  EXPECT_EQ(e.key(), "vertex.y");
+  EXPECT_NE(e.value().find("1.5e"), std::string::npos);
+  const std::string shortFile = scratchFile("splats_ascii_short.ply", asciiPly(names, asText(inriaRows(names, 3)), 4));
+  e = expectInputError([&] { loadGaussians(shortFile); });
+  EXPECT_EQ(e.key(), "vertex");
+  const std::string huge = scratchFile("splats_ascii_huge.ply", asciiPly(names, asText(inriaRows(names, 1)), 3000000000000L));
+  EXPECT_EQ(expectInputError([&] { loadGaussians(huge); }).key(), "vertex");
 }
 
 TEST(SplatLoadersBadInput, TruncatedAndImpossibleCounts) {
