@@ -74,7 +74,7 @@ void addEiaCommand(CLI::App& app) {
              "panel drive values");
   addDisplayOptions(cmd, o->display);
   o->sceneOpt = cmd->add_option("--scene", o->scene, "Scene JSON (default: scenes/paper-fig7.json)");
-  o->fieldOpt = cmd->add_option("--field", o->field, "The field to show: a scene JSON or a trained radiance field (.inimrf)");
+  o->fieldOpt = cmd->add_option("--field", o->field, "The field to show: a scene JSON, a trained radiance field (.inimrf) or Gaussian splats (.ply, .splat)");
   o->colorsOpt = cmd->add_option("--field-colors", o->fieldColors,
                                  "Colours of an external field, one per query ray written by `inim rays --for-field` "
                                  "with the same display, placement and settings (.npy or .exr: R G B [A [depth]])");

@@ -22,7 +22,7 @@ void addFig11Command(CLI::App& app) {
   cmd->add_option("--out", o->s.outDir, "Output folder")->required();
   cmd->add_option("--display", o->s.displayPath, "Display JSON (default: the paper's prototype)");
   cmd->add_option("--scene,--field", o->s.fieldPath,
-                  "The field: a scene JSON or a trained radiance field (.inimrf) (default: scenes/paper-fig7.json)");
+                  "The field: a scene JSON, a trained radiance field (.inimrf) or Gaussian splats (.ply, .splat) (default: scenes/paper-fig7.json)");
   cmd->add_option("--camera", o->s.camera, "Camera description (name in optics/cameras or a file)")->capture_default_str();
   cmd->add_option("--mla", o->mla, "MLA model for the reconstruction: real (refracting) or ideal (thin lenslets)")
       ->check(CLI::IsMember({"real", "ideal"}))

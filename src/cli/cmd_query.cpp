@@ -23,7 +23,7 @@ void addQueryCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "query", "Query a field along the rays of a table written by `inim rays --for-field`; writes linear Rec.709 "
                "R G B A depth per ray (.npy or .exr) for `inim eia --field-colors FILE --field-colors-encoding linear`");
-  cmd->add_option("--field", o->field, "Scene JSON or trained radiance field (.inimrf)")->required();
+  cmd->add_option("--field", o->field, "Scene JSON, trained radiance field (.inimrf) or Gaussian splats (.ply, .splat)")->required();
   cmd->add_option("--rays", o->rays, "Ray table (.npy or .exr) from `inim rays --for-field`")->required();
   cmd->add_option("--out", o->out, "Colour table (.npy: float32 N x 5, or .exr: R G B A Z)")->required();
   addRunOptions(cmd, o->run, [o] {

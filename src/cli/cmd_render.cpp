@@ -20,8 +20,8 @@ void addRenderCommand(CLI::App& app) {
   auto o = std::make_shared<Opts>();
   auto* cmd = app.add_subcommand("render", "Render a scene spectrally through a pinhole or thin-lens camera");
   cmd->add_option("--scene,--field", o->s.fieldPath,
-                  "Scene JSON, or a trained radiance field (.inimrf) for novel views in its own units and frame "
-                  "(default: scenes/paper-fig7.json)");
+                  "Scene JSON, a trained radiance field (.inimrf) for novel views in its own units and frame, "
+                  "or Gaussian splats (.ply, .splat; placed in the display frame) (default: scenes/paper-fig7.json)");
   cmd->add_option("--out", o->s.out, "Output EXR (linear Rec.709 + A + Z); an sRGB PNG is written beside it")
       ->required();
   cmd->add_option("--width", o->s.camera.width, "Image width, pixels")->capture_default_str();

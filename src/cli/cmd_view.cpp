@@ -270,7 +270,7 @@ void addReferenceCommand(CLI::App& app) {
       "reference", "Render the scene itself through the viewing camera at the same pose, placed as for the EIA "
                    "(the reference for inim view)");
   cmd->add_option("--scene,--field", o->scene,
-                  "Scene JSON or trained radiance field (.inimrf) (default: the run file's, else scenes/paper-fig7.json)");
+                  "Scene JSON, trained radiance field (.inimrf) or Gaussian splats (.ply, .splat) (default: the run file's, else scenes/paper-fig7.json)");
   cmd->add_option("--run", o->run, "Run file of the EIA (placement, scene, display); options override it");
   addPlacementOptions(cmd, o->place);
   cmd->add_option("--display", o->display, "Display JSON (default: the run file's, else the paper prototype): "

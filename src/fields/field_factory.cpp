@@ -6,6 +6,9 @@
 #include "fitting/dataset_fit.h"
 #include "radiance/radiance_field.h"
 #include "scene/analytic_scene.h"
+#include "splats/splat_field.h"
+#include "splats/splat_loaders.h"
+#include "splats/splat_placement.h"
 
 namespace inim {
 
@@ -14,6 +17,7 @@ const char* fieldKindName(FieldKind k) {
     case FieldKind::AnalyticScene: return "analytic scene";
     case FieldKind::RadianceField: return "radiance field";
     case FieldKind::ExternalColors: return "external field colours";
+    case FieldKind::GaussianSplats: return "Gaussian splats";
   }
   return "field";
 }
@@ -38,7 +42,18 @@ LoadedField loadField(const std::string& path, const std::string& key) {
     f.kind = FieldKind::RadianceField;
     return f;
   }
-  throw InputError("", key, "\"" + path + "\"", "an analytic scene (.json) or a trained radiance field (.inimrf)");
+  if (ext == ".ply" || ext == ".splat") {
+    // A splat scene has COLMAP axes and no units: defaultSplatFrame turns it into the display
+    // frame (y up, z toward the viewer) and fits its central 96 % to the panel, so the field is
+    // in display millimetres like an analytic scene and carries no placement of its own.
+    Gaussians g = loadGaussians(path);
+    const SplatFrame frame = defaultSplatFrame(g);
+    f.field = std::make_unique<SplatField>(std::move(g), frame);
+    f.kind = FieldKind::GaussianSplats;
+    return f;
+  }
+  throw InputError("", key, "\"" + path + "\"",
+                   "an analytic scene (.json), a trained radiance field (.inimrf) or Gaussian splats (.ply, .splat)");
 }
 
 LoadedField loadFieldColors(const std::string& path, int spp, size_t numQueries, ColorEncoding encoding) {

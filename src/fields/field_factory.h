@@ -19,8 +19,9 @@ namespace inim {
 
 class AnalyticScene;
 
-enum class FieldKind { AnalyticScene, RadianceField, ExternalColors };
-const char* fieldKindName(FieldKind k);  // "analytic scene", "radiance field", "external field colours"
+enum class FieldKind { AnalyticScene, RadianceField, ExternalColors, GaussianSplats };
+// "analytic scene", "radiance field", "external field colours", "Gaussian splats"
+const char* fieldKindName(FieldKind k);
 
 struct LoadedField {
   std::unique_ptr<Field> field;
@@ -37,8 +38,9 @@ struct LoadedField {
 // scenes/paper-fig7.json under the data folder: the field every tool shows by default.
 std::string defaultScenePath();
 
-// `path` by extension: .json = analytic scene, .inimrf = trained radiance field. InputError
-// naming the setting `key` otherwise.
+// `path` by extension: .json = analytic scene, .inimrf = trained radiance field, .ply / .splat =
+// Gaussian splats (splats/splat_field.h; placed in display mm by splats/splat_placement.h, so
+// no placement of its own). InputError naming the setting `key` otherwise.
 LoadedField loadField(const std::string& path, const std::string& key);
 
 // The colours an external renderer filled in for the query rays of a synthesis run

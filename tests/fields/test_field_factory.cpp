@@ -3,6 +3,7 @@
 // InputError naming the setting.
 #include <gtest/gtest.h>
 
+#include "core/output_file.h"
 #include "expect_input_error.h"
 #include "fields/field_factory.h"
 #include "radiance/grid_io.h"
@@ -50,8 +51,25 @@ TEST(FieldFactory, ModelCarriesThePlacementOfItsUnits) {
 }
 
 TEST(FieldFactory, OtherExtensionsNameTheSetting) {
-  const InputError e = expectInputError([] { (void)loadField("model.ply", "field_model"); });
+  const InputError e = expectInputError([] { (void)loadField("model.obj", "field_model"); });
   EXPECT_EQ(e.key(), "field_model");
   EXPECT_EQ(e.file(), "");
-  EXPECT_NE(e.value().find("model.ply"), std::string::npos);
+  EXPECT_NE(e.value().find("model.obj"), std::string::npos);
+}
+
+TEST(FieldFactory, SplatFilesAreGaussianSplatsInDisplayMillimetres) {
+  LoadedField f = loadField(dataPath("scenes/splats/guitar.compressed.ply"), "field");
+  EXPECT_EQ(f.kind, FieldKind::GaussianSplats);
+  EXPECT_STREQ(fieldKindName(f.kind), "Gaussian splats");
+  EXPECT_FALSE(f.placement);  // placed on load
+  EXPECT_EQ(f.field->encoding(), FieldEncoding::RGB);
+  Point3 lo, hi;
+  f.field->bounds(lo, hi);
+  EXPECT_LT(lo.x, 0.0f);  // straddles the panel centre
+  EXPECT_GT(hi.x, 0.0f);
+  const LoadedField s = loadField(std::string(INIM_SOURCE_DATA_DIR) + "/tests/data/splats/metalsplatter-3pts.splat", "field");
+  EXPECT_EQ(s.kind, FieldKind::GaussianSplats);
+  // A broken splat file names the file, not the setting.
+  const InputError e = expectInputError([] { (void)loadField("no-such.ply", "field"); });
+  EXPECT_EQ(e.file(), "no-such.ply");
 }
