@@ -42,6 +42,7 @@ void printViewBenchResults();
 void registerRadianceBenchmarks(const RadianceBenchSettings& settings);
 void printRadianceBenchResults();
 void registerFig11Benchmarks();
+void registerSplatBenchmarks(double minTime);
 void printFig11BenchResults();
 
 }  // namespace inim::bench

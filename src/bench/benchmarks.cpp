@@ -39,6 +39,7 @@ void printRatios(std::map<std::string, double>& rps) {
   ratio("query/inim-field", "query/bare-embree");
   ratio("eia-query/inim-field", "eia-query/bare-embree");
   ratio("eia/paper-fig7-default-display-1spp", "eia-query/bare-embree");
+  ratio("splats/guitar-query-960x540", "splats/guitar-bare-embree-boxes-960x540");
 }
 
 }  // namespace
@@ -48,6 +49,7 @@ void runBenchmarks(const BenchSettings& settings) {
   bench::registerQueryBenchmarks(settings.minTime);
   bench::registerViewBenchmarks(settings.view);
   bench::registerFig11Benchmarks();
+  bench::registerSplatBenchmarks(settings.minTime);
   // Debian builds libbenchmark without NDEBUG, so it prints a DEBUG warning; inim itself is a
   // Release build (see the header line below).
   std::string filterArg = "--benchmark_filter=" + settings.filter;

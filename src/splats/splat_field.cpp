@@ -176,19 +176,20 @@ SplatTraceResult SplatField::trace(const Vec3& o, const Vec3& d, float tNear, fl
   return r;
 }
 
+SplatTraceResult SplatField::traceFieldRay(const FieldRay& fr) const {
+  // display = s R p + T: the splat-frame ray has origin R^T (o - T) / s, direction R^T d and
+  // parameter t / s.
+  const glm::mat3 toSplat = glm::transpose(frame_.rotation);
+  const float invScale = 1.0f / frame_.scale;
+  return trace(toSplat * (fr.o - frame_.translate) * invScale, toSplat * fr.d, fr.tNear * invScale, fr.tFar * invScale);
+}
+
 void SplatField::query(std::span<const FieldRay> rays, std::span<const SampledWavelengths>,
                        std::span<FieldSample> out, uint64_t) const {
   if (out.size() < rays.size()) throw std::invalid_argument("SplatField: output too small");
-  const glm::mat3 toSplat = glm::transpose(frame_.rotation);
-  const float invScale = 1.0f / frame_.scale;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i < range.end(); ++i) {
-      const FieldRay& fr = rays[i];
-      // display = s R p + T: the splat-frame ray has origin R^T (o - T) / s, direction R^T d and
-      // parameter t / s.
-      const Vec3 o = toSplat * (fr.o - frame_.translate) * invScale;
-      const Vec3 d = toSplat * fr.d;
-      const SplatTraceResult r = trace(o, d, fr.tNear * invScale, fr.tFar * invScale);
+      const SplatTraceResult r = traceFieldRay(rays[i]);
       FieldSample& s = out[i];
       s.rgb = Vec3(srgbDecode(r.encodedRgb.x), srgbDecode(r.encodedRgb.y), srgbDecode(r.encodedRgb.z));
       s.depth = r.depth * frame_.scale;

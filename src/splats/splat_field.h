@@ -99,6 +99,10 @@ class SplatField : public Field {
 
   // One ray in the splat frame (d unit), t in [tNear, tFar].
   SplatTraceResult trace(const Vec3& o, const Vec3& d, float tNear, float tFar) const;
+  // One query ray (field frame) as query() traces it; depth in splat units.
+  SplatTraceResult traceFieldRay(const FieldRay& ray) const;
+  // The Embree scene of the cut-off boxes (for benchmarks of the bare traversal).
+  RTCScene embreeScene() const { return scene_; }
 
   const Gaussians& gaussians() const { return g_; }
   const std::vector<SplatPrimitive>& primitives() const { return prims_; }
