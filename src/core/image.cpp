@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/size_budget.h"
 
 namespace inim {
 
@@ -61,6 +62,11 @@ Image readImage(const std::string& path, bool rejectNonFinite) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw InputError(path, "", "", "a readable image (" + OIIO::geterror() + ")");
   const OIIO::ImageSpec& spec = in->spec();
+  // The size its header declares, before it is allocated.
+  checkAllocation(path, "size",
+                  std::to_string(spec.width) + " x " + std::to_string(spec.height) + " px x " +
+                      std::to_string(spec.nchannels) + " channels",
+                  {{double(spec.width) * spec.height * spec.nchannels, sizeof(float)}}, "the image");
   Image img(spec.width, spec.height, spec.channelnames);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data()))
     throw InputError(path, "", "", "a readable image (" + in->geterror() + ")");
