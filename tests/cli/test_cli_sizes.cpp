@@ -175,3 +175,42 @@ TEST(CliSizes, DatasetPrincipalPointFarOutsideTheImageIsRefused) {
     expectBadInput("train --data " + dir + " --out " + model, {"transforms.json", key}, {model});
   }
 }
+
+TEST(CliSizes, CorruptPngGivesInimsMessageOnly) {
+  // A valid 4 x 4 PNG, then the same with its compressed data damaged.
+  const std::string good = path("good.png"), bad = path("bad.png");
+  writeImage(Image(4, 4, {"R", "G", "B"}), good);
+  std::ifstream in(good, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t idat = bytes.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  bytes[idat + 6] = char(bytes[idat + 6] ^ 0x55);
+  bytes[idat + 7] = char(bytes[idat + 7] ^ 0x55);
+  writeText(bad, bytes);
+  const CliResult r = runInim("compare " + good + " " + bad);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_EQ(r.output.rfind("inim: error: " + bad, 0), 0u) << "something before inim's message:\n" << r.output;
+  EXPECT_EQ(r.output.find("libpng"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << "not one line:\n" << r.output;
+}
+
+TEST(CliSizes, ViewSaysHowManyDriveValuesItClamps) {
+  const std::string eia = path("clamped-eia.exr"), out = path("clamped-view.exr");
+  Image e(3840, 1644, {"R", "G", "B"});
+  e.at(0, 0, 0) = -0.5f;  // below black
+  e.at(10, 20, 1) = 7.0f;  // far above white
+  e.at(11, 20, 2) = 1.0f;  // white: shown as it is
+  writeImage(e, eia);
+  const CliResult r = runInim("view --eia " + eia + " --width 32 --spp 1 --quiet --out " + out);
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("inim: warning: " + eia + ": 2 of 18938880 drive values are outside [0, 1] (from -0.5 to 7)"),
+            std::string::npos)
+      << r.output;
+  const size_t first = r.output.find("drive values");
+  EXPECT_EQ(r.output.find("drive values", first + 1), std::string::npos) << "warned more than once:\n" << r.output;
+  // In range: no warning.
+  writeImage(Image(3840, 1644, {"R", "G", "B"}), eia);
+  const CliResult quiet = runInim("view --eia " + eia + " --width 32 --spp 1 --quiet --out " + out);
+  EXPECT_EQ(quiet.status, 0) << quiet.output;
+  EXPECT_EQ(quiet.output.find("drive values"), std::string::npos) << quiet.output;
+}
