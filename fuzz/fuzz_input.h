@@ -15,6 +15,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/size_budget.h"
 
 namespace inim::fuzz {
 
@@ -23,9 +24,15 @@ inline std::string inputPath(const char* extension) {
   return std::string(dir && *dir ? dir : "/tmp") + "/inim-fuzz-" + std::to_string(getpid()) + extension;
 }
 
+// Below libFuzzer's 3 GiB memory limit, so that a size a file declares is refused by inim's
+// budget (core/size_budget.h) before the fuzzer would report it as running out of memory.
+constexpr uint64_t kFuzzMemoryLimitBytes = uint64_t(1) << 30;
+
 template <class Load>
 int fuzzLoad(const uint8_t* data, size_t size, const char* extension, Load load) {
   static const std::string path = inputPath(extension);
+  static const bool limited = (setMemoryLimitBytes(kFuzzMemoryLimitBytes), true);
+  (void)limited;
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) std::abort();
   if (size > 0 && std::fwrite(data, 1, size, f) != size) std::abort();

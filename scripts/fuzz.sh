@@ -25,7 +25,7 @@ for t in "${targets[@]}"; do
   mkdir -p "$ROOT/fuzz/corpus/$t"
   log="$BUILD/logs/$t.log"
   if (cd "$BUILD" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-        INIM_MAX_MEMORY="${INIM_MAX_MEMORY:-1G}" TMPDIR="$BUILD" \
+        TMPDIR="$BUILD" \
         "./fuzz_$t" -max_total_time="$SECONDS_EACH" -timeout=30 -rss_limit_mb=3072 -max_len=65536 \
         -print_final_stats=1 "$ROOT/fuzz/corpus/$t" >"$log" 2>&1); then
     result=ok

@@ -18,6 +18,9 @@ SensorGeometry checkedSensor(const FovCameraSettings& s) {
   if (!(s.hfovDeg > 0.0f && s.hfovDeg < 179.0f))
     throw InputError("", "hfov_deg", formatNumber(s.hfovDeg), "a field of view in (0, 179) degrees");
   if (!(s.apertureMm >= 0.0f)) throw InputError("", "aperture_mm", formatNumber(s.apertureMm), "an aperture >= 0 mm");
+  // 0 means "eye to look-at"; a negative or non-finite distance focuses nowhere (a black image).
+  if (!(s.focusDistanceMm >= 0.0f && std::isfinite(s.focusDistanceMm)))
+    throw InputError("", "focus_distance_mm", formatNumber(s.focusDistanceMm), "a focus distance > 0 mm");
   SensorGeometry g;
   g.widthPx = s.width;
   g.heightPx = s.height;

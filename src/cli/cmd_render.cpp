@@ -1,11 +1,14 @@
 // inim render: a spectral image of a field (an analytic scene by default) through a
 // pinhole or thin-lens camera. Writes the linear EXR (R,G,B Rec.709, A, Z) and an sRGB PNG
 // beside it. The run is src/experiments/render_run.h.
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
 #include "cli/commands.h"
 #include "cli/options.h"
+#include "core/error.h"
+#include "core/format.h"
 #include "experiments/render_run.h"
 
 namespace inim::cli {
@@ -14,8 +17,9 @@ void addRenderCommand(CLI::App& app) {
   struct Opts {
     RenderRunSettings s;
     std::string eye = "0,0,350", lookAt = "0,0,0", up = "0,1,0", integrator;
-    int maxDepth = -1;
+    int maxDepth = 0;
     RunOptions run;
+    CLI::Option *focusOpt = nullptr, *maxDepthOpt = nullptr;
   };
   auto o = std::make_shared<Opts>();
   auto* cmd = app.add_subcommand("render", "Render a scene spectrally through a pinhole or thin-lens camera");
@@ -33,17 +37,25 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--fov", o->s.camera.hfovDeg, "Horizontal field of view, degrees")->capture_default_str();
   cmd->add_option("--aperture", o->s.camera.apertureMm, "Thin-lens aperture diameter, mm (0 = pinhole)")
       ->capture_default_str();
-  cmd->add_option("--focus", o->s.camera.focusDistanceMm, "Focus distance, mm (default: eye to look-at)");
+  o->focusOpt = cmd->add_option("--focus", o->s.camera.focusDistanceMm, "Focus distance, mm (default: eye to look-at)");
   cmd->add_option("--integrator", o->integrator, "direct (default in scenes) or path (NEE + MIS)")
       ->check(CLI::IsMember({"direct", "path"}));
-  cmd->add_option("--max-depth", o->maxDepth, "Maximum scattering depth (overrides the scene)");
+  o->maxDepthOpt = cmd->add_option("--max-depth", o->maxDepth, "Maximum scattering depth (overrides the scene)");
   addRunOptions(cmd, o->run, [o] {
     RenderRunSettings& s = o->s;
     s.camera.pose = {parseCameraVector(o->eye, "eye"), parseCameraVector(o->lookAt, "look_at"),
                      parseCameraVector(o->up, "up")};
     if (o->integrator == "direct") s.integrator = IntegratorSettings::Type::Direct;
     if (o->integrator == "path") s.integrator = IntegratorSettings::Type::Path;
-    if (o->maxDepth >= 0) s.maxDepth = o->maxDepth;
+    // Given on the command line, 0 is not "the default" (the camera's own meaning of 0).
+    const float focus = s.camera.focusDistanceMm;
+    if (o->focusOpt->count() && !(focus > 0.0f && std::isfinite(focus)))
+      throw InputError("", "focus_distance_mm", formatNumber(focus), "a focus distance > 0 mm");
+    if (o->maxDepthOpt->count()) {
+      if (o->maxDepth < 0 || o->maxDepth > 1000)  // the scene file's range (scene_loader.cpp)
+        throw InputError("", "max_depth", std::to_string(o->maxDepth), "a scattering depth in 0-1000");
+      s.maxDepth = o->maxDepth;
+    }
     s.render.seed = o->run.seed;
     const RenderRunResult r = runRender(s);
     std::printf("rendered %s: %dx%d, %d spp, %.2f s, %.2f Mrays/s (camera rays)\n  wrote %s\n  wrote %s\n",

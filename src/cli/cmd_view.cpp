@@ -2,6 +2,7 @@
 // camera lens, the MLA and the panel's subpixels; src/view/view_renderer.h).
 // inim reference: the same camera and pose looking at the scene itself, at the placement the
 // EIA was made with (src/view/reference_renderer.h). Both run in src/experiments/camera_run.h.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -163,10 +164,34 @@ void printComparison(const ViewReferenceResult& r) {
   if (r.budget) std::printf("budget:      %s\n", budgetLine(*r.budget).c_str());
 }
 
+// A panel shows drive values in [0, 1] and the emitter clamps the rest (view/panel_emitter.cpp):
+// say so once, with the count, rather than refuse (EIAs filtered or resampled elsewhere
+// overshoot a little, and clamping is what the panel does).
+void warnIfDriveClamped(const ViewRunResult& v, const std::string& eiaPath) {
+  const Image& e = *v.eia;
+  const bool named = e.channelIndex("R") >= 0 && e.channelIndex("G") >= 0 && e.channelIndex("B") >= 0;
+  int64_t outside = 0;
+  float lo = 0.0f, hi = 1.0f;
+  for (int c = 0; c < 3 && c < e.numChannels(); ++c) {
+    const int ch = named ? e.channelIndex(std::string(1, "RGB"[c])) : c;
+    for (int y = 0; y < e.height; ++y)
+      for (int x = 0; x < e.width; ++x) {
+        const float d = e.at(x, y, ch);
+        if (d >= 0.0f && d <= 1.0f) continue;
+        ++outside, lo = std::min(lo, d), hi = std::max(hi, d);
+      }
+  }
+  if (outside == 0) return;
+  std::fprintf(stderr, "inim: warning: %s: %lld of %lld drive values are outside [0, 1] (from %s to %s); the panel "
+               "shows them clamped\n", eiaPath.c_str(), (long long)outside, (long long)e.width * e.height * 3,
+               formatNumber(lo).c_str(), formatNumber(hi).c_str());
+}
+
 void runViewCommand(const ViewOpts& o) {
   const auto t0 = std::chrono::steady_clock::now();
   const ViewRunSettings s = viewRunSettings(o);
   auto loaded = [&](const ViewRunResult& v) {
+    warnIfDriveClamped(v, s.eiaPath);
     if (o.cam.quiet) return;
     std::printf("%s", loadedText(s, v).c_str());
     std::fflush(stdout);

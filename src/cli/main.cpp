@@ -6,12 +6,21 @@
 #include "cli/options.h"
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/size_budget.h"
 
 int main(int argc, char** argv) {
   inim::installInterruptHandlers();  // Ctrl-C / SIGTERM: unwind (removing temporaries), exit 130 / 143
   CLI::App app{"inim: spectral simulator for integral-imaging light-field displays"};
   app.set_version_flag("--version", std::string("inim ") + INIM_VERSION);
   app.require_subcommand(1);
+  // --max-memory is global: before the command or among its options (fallthrough hands options a
+  // command does not know to this app).
+  app.fallthrough();
+  app.add_option_function<std::string>(
+      "--max-memory",
+      [](const std::string& text) { inim::setMemoryLimitBytes(inim::parseByteSize(text, "--max-memory")); },
+      "Largest allocation a command may make from its input, e.g. 8G or 512M (default: 16G, or 3/4 of the "
+      "physical memory when that is less); larger sizes are refused before any work");
   inim::cli::addRenderCommand(app);
   inim::cli::addDisplayCommand(app);
   inim::cli::addRaysCommand(app);

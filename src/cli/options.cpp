@@ -13,6 +13,8 @@ void addRunOptions(CLI::App* cmd, RunOptions& opts, std::function<void()> body) 
   opts.seedOpt = cmd->add_option("--seed", opts.seed, "Random seed; output depends on it only")->capture_default_str();
   cmd->add_option("--threads", opts.threads, "Worker threads (0 = all cores)")->capture_default_str();
   cmd->callback([&opts, body = std::move(body)] {
+    if (opts.threads < 0)
+      throw InputError("", "threads", std::to_string(opts.threads), "a thread count >= 0 (0 = all cores)");
     ThreadLimit threads(opts.threads);
     body();
   });

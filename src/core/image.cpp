@@ -4,13 +4,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/quiet_stderr.h"
+#include "core/size_budget.h"
 
 namespace inim {
+
+namespace {
+
+// OIIO's error text on one line ("a\nb\n" -> "a; b").
+std::string oneLine(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  for (size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at)) text.replace(at, 1, "; ");
+  return text;
+}
+
+}  // namespace
 
 int Image::channelIndex(const std::string& name) const {
   auto it = std::find(channels.begin(), channels.end(), name);
@@ -76,8 +90,9 @@ void writeImage(const Image& img, const std::string& path, const ImageNumbers& n
 }
 
 std::optional<double> readImageNumber(const std::string& path, const std::string& name) {
+  LibraryStderrSilenced quiet(path);
   auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError(path, "", "", "a readable image (" + OIIO::geterror() + ")");
+  if (!in) throw InputError(path, "", "", "a readable image (" + oneLine(OIIO::geterror()) + ")");
   const OIIO::ParamValue* p = in->spec().find_attribute(name);
   if (!p) return std::nullopt;
   if (p->type() == OIIO::TypeDesc::DOUBLE) return *static_cast<const double*>(p->data());
@@ -86,12 +101,18 @@ std::optional<double> readImageNumber(const std::string& path, const std::string
 }
 
 Image readImage(const std::string& path, bool rejectNonFinite) {
+  LibraryStderrSilenced quiet(path);
   auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError(path, "", "", "a readable image (" + OIIO::geterror() + ")");
+  if (!in) throw InputError(path, "", "", "a readable image (" + oneLine(OIIO::geterror()) + ")");
   const OIIO::ImageSpec& spec = in->spec();
+  // The size its header declares, before it is allocated.
+  checkAllocation(path, "size",
+                  std::to_string(spec.width) + " x " + std::to_string(spec.height) + " px x " +
+                      std::to_string(spec.nchannels) + " channels",
+                  {{double(spec.width) * spec.height * spec.nchannels, sizeof(float)}}, "the image");
   Image img(spec.width, spec.height, spec.channelnames);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data()))
-    throw InputError(path, "", "", "a readable image (" + in->geterror() + ")");
+    throw InputError(path, "", "", "a readable image (" + oneLine(in->geterror()) + ")");
   in->close();
   if (rejectNonFinite) {
     for (size_t i = 0; i < img.data.size(); ++i)

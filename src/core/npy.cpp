@@ -6,12 +6,52 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/size_budget.h"
 
 namespace inim {
 
 namespace {
 const char kMagic[] = "\x93NUMPY";
+
+// The dimensions of a shape tuple "(25000, 3)": whole numbers >= 0 (a minus sign is not
+// dropped, a number beyond int64 is not wrapped).
+std::vector<int64_t> parseShape(const std::string& path, const std::string& dims) {
+  std::vector<int64_t> shape;
+  const std::regex item("\\s*([^,\\s][^,]*?)\\s*(,|$)");
+  for (std::sregex_iterator it(dims.begin(), dims.end(), item), end; it != end; ++it) {
+    const std::string text = (*it)[1];
+    if (text.empty()) continue;
+    size_t used = 0;
+    long long v = -1;
+    try {
+      v = std::stoll(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != text.size() || v < 0)
+      throw InputError(path, "shape", "(" + dims + ")", "dimensions that are whole numbers >= 0");
+    shape.push_back(v);
+  }
+  return shape;
 }
+
+// The data a shape declares must be in the file, and within the memory budget, before any of it
+// is allocated: a header claiming (1e12, 3) once asked for 12 TB.
+void checkDeclaredSize(std::ifstream& f, const std::string& path, const std::string& dims, double count,
+                       size_t itemSize) {
+  const std::streampos dataStart = f.tellg();
+  f.seekg(0, std::ios::end);
+  const double available = double(f.tellg() - dataStart);
+  f.seekg(dataStart);
+  const double declared = count * double(itemSize);
+  if (declared > available)
+    throw InputError(path, "data", "truncated: " + formatBytes(available) + " after the header",
+                     "the " + formatBytes(declared) + " of data of shape (" + dims + ")");
+  checkAllocation(path, "shape", "(" + dims + ")", {{count, double(sizeof(float))}, {itemSize == 8 ? count : 0.0, 8.0}},
+                  "the array");
+}
+
+}  // namespace
 
 void writeNpy(const std::string& path, const NpyArray& a) {
   if (a.data.size() != size_t(a.rows * a.cols)) throw std::runtime_error("writeNpy: data size does not match shape");
@@ -74,15 +114,13 @@ NpyArray readNpy(const std::string& path) {
     throw InputError(path, "fortran_order", "True", "C order (numpy.ascontiguousarray before saving)");
   if (!std::regex_search(header, m, std::regex("'shape'\\s*:\\s*\\(([^)]*)\\)")))
     throw InputError(path, "shape", "missing", "a shape");
-  std::vector<int64_t> shape;
   const std::string dims = m[1];
-  const std::regex digits("\\d+");
-  for (std::sregex_iterator it(dims.begin(), dims.end(), digits), end; it != end; ++it)
-    shape.push_back(std::stoll(it->str()));
+  const std::vector<int64_t> shape = parseShape(path, dims);
   NpyArray a;
   if (shape.size() == 1) a.rows = shape[0], a.cols = 1;
   else if (shape.size() == 2) a.rows = shape[0], a.cols = shape[1];
   else throw InputError(path, "shape", "(" + dims + ")", "a 1-D or 2-D array");
+  checkDeclaredSize(f, path, dims, double(a.rows) * double(a.cols), itemSize);
 
   const size_t n = size_t(a.rows * a.cols);
   a.data.resize(n);

@@ -8,6 +8,8 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/quiet_stderr.h"
+#include "core/size_budget.h"
 
 namespace inim {
 
@@ -33,6 +35,7 @@ int alphaChannel(const OIIO::ImageSpec& spec) {
 }  // namespace
 
 ImageHeader readImageHeader(const std::string& path) {
+  LibraryStderrSilenced quiet(path);
   auto in = openImage(path);
   const OIIO::ImageSpec& spec = in->spec();
   ImageHeader h{spec.width, spec.height, spec.nchannels, alphaChannel(spec) >= 0};
@@ -70,9 +73,13 @@ Image downscaleImage(const Image& img, int f) {
 }
 
 Image readDatasetImage(const std::string& path, const glm::vec3& bg, int downscale, bool* hadAlpha) {
+  LibraryStderrSilenced quiet(path);
   auto in = openImage(path);
   const OIIO::ImageSpec& spec = in->spec();
   const int W = spec.width, H = spec.height, N = spec.nchannels;
+  checkAllocation(path, "size",
+                  std::to_string(W) + " x " + std::to_string(H) + " px x " + std::to_string(N) + " channels",
+                  {{double(W) * H * N, 2 * sizeof(float)}}, "the image and its copy");
   std::vector<float> px(size_t(W) * H * N);
   if (!in->read_image(0, 0, 0, N, OIIO::TypeDesc::FLOAT, px.data()))
     throw InputError(path, "", "", "a readable image (" + in->geterror() + ")");

@@ -15,8 +15,8 @@ struct FrameSpec {
   std::string key;                // key path for messages, e.g. "frames[3].file_path"
   glm::dmat4 cameraToWorld{1.0};  // OpenGL axes
   // Intrinsics at the file's resolution. width/height 0 = take them from the image; fx 0 =
-  // derive from angleX (and fy from angleY, else fx) once the width is known; cx/cy < 0 =
-  // the image centre.
+  // derive from angleX (and fy from angleY, else fx) once the width is known; cx/cy NaN =
+  // the image centre (a given negative cx is a value, checked against the image).
   Intrinsics intrinsics;
   double angleX = 0, angleY = 0;  // radians (Blender's camera_angle_x/_y)
 };

@@ -143,8 +143,8 @@ DatasetManifest readTransformsJson(const std::string& path) {
       throw InputError(path, f.keyPath("fl_x"), "missing",
                        "intrinsics: fl_x (and fl_y, cx, cy) or camera_angle_x, globally or per frame");
     }
-    k.cx = c.has("cx") ? c.number("cx", 0) : -1.0;
-    k.cy = c.has("cy") ? c.number("cy", 0) : -1.0;
+    k.cx = c.has("cx") ? c.number("cx", 0) : std::numeric_limits<double>::quiet_NaN();
+    k.cy = c.has("cy") ? c.number("cy", 0) : std::numeric_limits<double>::quiet_NaN();
     bool pinhole = c.has("camera_model") && c.owner("camera_model").string("camera_model") == "PINHOLE";
     if (!pinhole) {
       k.k1 = c.number("k1", 0);

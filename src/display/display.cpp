@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/output_file.h"
 #include "display/ei_layout.h"
+#include "spectral/dispersion.h"
 
 namespace fs = std::filesystem;
 
@@ -70,6 +71,19 @@ static void readPair(const JsonObject& o, const std::string& key, int& a, int& b
   b = p[1];
 }
 
+// The lens and cover-glass materials, once for every command: an unknown name once passed `eia`
+// and `rays` and was refused only by the commands that refract. Named as the display holds them
+// (mla.material), with the part's own file when it has one.
+static void checkMaterial(const Display& d, const std::string& key, const std::string& material,
+                          const std::string& partFile) {
+  const MaterialCatalog& catalog = MaterialCatalog::standard();
+  if (catalog.hasDielectric(material)) return;
+  std::string known;
+  for (const auto& n : catalog.dielectricNames()) known += (known.empty() ? "" : ", ") + n;
+  throw InputError(d.file, key, "\"" + material + "\"" + (partFile != d.file ? " (in " + partFile + ")" : ""),
+                   "a dielectric of the material catalog: " + known);
+}
+
 Display loadDisplay(const std::string& path) {
   Json j = readJsonFile(path);
   JsonObject o(j, path, "");
@@ -92,6 +106,8 @@ Display loadDisplay(const std::string& path) {
     d.viewingDistanceMm = o.positive("viewing_distance_mm");
   d.assumptions = readAssumptions(o);
   o.rejectUnknown();
+  checkMaterial(d, "mla.material", d.mla.material, d.mla.file);
+  if (d.panel.coverGlass) checkMaterial(d, "panel.cover_glass.material", d.panel.coverGlass->material, d.panel.file);
   (void)computeLayout(d);  // validates the EI layout against the panel
   return d;
 }

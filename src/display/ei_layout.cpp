@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "core/size_budget.h"
 
 namespace inim {
 
@@ -25,6 +26,27 @@ void checkToedInSpan(const Display& d, int K, int R, int eiW, int eiH, double st
                        std::to_string(K) + " x " + std::to_string(R) + " EIs on the panel's " +
                        std::to_string(d.panel.widthPx) + " x " + std::to_string(d.panel.heightPx) +
                        " px (they would span " + formatNumber(w, "%.4g") + " x " + formatNumber(h, "%.4g") + " px)");
+}
+
+std::string eiCountText(const Display& d) {
+  char text[48];
+  std::snprintf(text, sizeof text, "[%d, %d]", d.eiCols, d.eiRows);
+  return text;
+}
+
+// The EIs of a row never overlap (the layouts refuse it), so the EIA is at least K ei_px wide,
+// and R ei_px high (square) or R ei_px sqrt(3)/2 (hex rows). Checked before any per-EI array is
+// formed: [1000000000, 1] EIs once allocated 8 GB of lens positions before the panel check.
+void checkEisCanFit(const Display& d) {
+  const double rowPitch = d.mla.lattice == Mla::Lattice::Hex ? std::sqrt(3.0) / 2.0 : 1.0;
+  const double minW = double(d.eiCols) * d.eiWidthPx, minH = double(d.eiRows) * d.eiHeightPx * rowPitch;
+  if (minW <= d.panel.widthPx && minH <= d.panel.heightPx * (1.0 + 1e-12)) return;
+  throw InputError(d.file, "ei_count",
+                   eiCountText(d) + " EIs of [" + std::to_string(d.eiWidthPx) + ", " +
+                       std::to_string(d.eiHeightPx) + "] px = at least " + formatNumber(minW, "%.6g") + " x " +
+                       formatNumber(minH, "%.6g") + " px",
+                   "an EIA that fits the panel's " + std::to_string(d.panel.widthPx) + " x " +
+                       std::to_string(d.panel.heightPx) + " px");
 }
 
 // Places `count` EIs of `n` pixels along one axis. `centrePx(k)` is the ideal EI centre in
@@ -126,6 +148,10 @@ EiLayout computeHexLayout(const Display& d) {
   L.panelCol0 = (L.panelW - L.eiaW) / 2;
   L.panelRow0 = (L.panelH - L.eiaH) / 2;
 
+  // The pixel map: owner, pixelRay, rayPixel (4 bytes each per EIA pixel) and 4 box bounds per EI.
+  checkAllocation(d.file, "ei_count", eiCountText(d) + " hex EIs on " + std::to_string(L.eiaW) + " x " +
+                                          std::to_string(L.eiaH) + " px",
+                  {{double(L.eiaW) * L.eiaH, 12.0}, {double(K) * R, 16.0}}, "the hex EI pixel map");
   // Voronoi assignment: each pixel to its nearest site (of the infinite lattice), kept when
   // that site is an indexed EI (and, toed-in, when the pixel is inside its hexagon).
   const int W = L.eiaW, H = L.eiaH;
@@ -264,6 +290,7 @@ AreaMm EiLayout::activeArea() const {
 }
 
 EiLayout computeLayout(const Display& d) {
+  checkEisCanFit(d);
   if (d.mla.lattice == Mla::Lattice::Hex) return computeHexLayout(d);
   EiLayout L;
   L.lensPitchMm = d.mla.pitchMm;

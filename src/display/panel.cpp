@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <memory>
 
 #include "core/error.h"
+
+namespace fs = std::filesystem;
 
 namespace inim {
 
@@ -220,6 +223,11 @@ static PrimarySpec parsePrimary(const JsonObject& o) {
     JsonObject co = o.object("csv");
     p.kind = PrimarySpec::Kind::Csv;
     p.csvPath = co.path("file");
+    // Checked here, where the panel file can be named: a missing spectrum once passed
+    // `display info` and was blamed on --triad-wavelengths by `eia`.
+    std::error_code ec;
+    if (!fs::is_regular_file(p.csvPath, ec))
+      co.fail("file", jsonValueText(co.raw("file")), "an existing CSV file (" + p.csvPath + " not found)");
     p.csvColumn = co.string("column", "relative_power");
     co.rejectUnknown();
   }

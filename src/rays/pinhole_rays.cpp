@@ -1,11 +1,13 @@
 #include "rays/pinhole_rays.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "core/size_budget.h"
 
 namespace inim {
 
@@ -21,6 +23,10 @@ RayD pinholeRay(const EiLayout& L, const RayAddress& a) {
 }
 
 RaySet generatePinholeRays(const EiLayout& L, ProgressBar* progress) {
+  char eis[96];
+  std::snprintf(eis, sizeof eis, "[%d, %d] EIs of %d x %d px", L.eiCols, L.eiRows, L.eiW, L.eiH);
+  checkAllocation("", "ei_count", eis, {{double(L.numRays()), 24.0}},
+                  std::to_string(L.numRays()) + " rays of 24 bytes");
   RaySet rays;
   rays.resize(size_t(L.numRays()));
   const int n = L.eiW, m = L.eiH;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/size_budget.h"
 
 namespace inim {
 
@@ -125,6 +126,7 @@ RaySet readRayBinary(const std::string& path, RayBinaryInfo* info) {
     info->eiH = getLE<int32_t>(h + 36);
     info->gapMm = getLE<float>(h + 40);
   }
+  checkAllocation(path, "ray count", std::to_string(n), {{double(n), 24.0}}, "the rays");
   RaySet rays;
   rays.resize(size_t(n));
   for (auto* v : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz}) readFloats(f.get(), *v, path);

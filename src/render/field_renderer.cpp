@@ -1,12 +1,16 @@
 #include "render/field_renderer.h"
 
+#include <algorithm>
 #include <atomic>
+#include <climits>
 #include <chrono>
 #include <cmath>
 #include <vector>
 
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "core/error.h"
+#include "core/size_budget.h"
 
 namespace inim {
 
@@ -124,6 +128,25 @@ class TileRenderer {
   const int raysPerSample_;
 };
 
+constexpr int kTileSize = 16;
+
+// Before any pixel: the image, and the camera rays of the tiles in flight (one per worker thread),
+// which grow with spp. Sample numbers are 32-bit (FieldRay::sample).
+void checkRenderSize(int W, int H, size_t channels, int spp, int raysPerSample) {
+  const std::string size = std::to_string(W) + " x " + std::to_string(H);
+  checkAllocation("", "width/height", size, {{double(W) * H, double(channels) * sizeof(float)}},
+                  "the " + size + " image of " + std::to_string(channels) + " channels");
+  if (double(spp) * raysPerSample > double(UINT32_MAX))
+    throw InputError("", "spp", std::to_string(spp), "at most " + std::to_string(UINT32_MAX / uint32_t(raysPerSample)) +
+                                                         " samples per pixel");
+  const double perRay = sizeof(FieldRay) + sizeof(SampledWavelengths) + sizeof(float) + sizeof(FieldSample);
+  const double tilePixels = double(std::min(W, kTileSize)) * std::min(H, kTileSize);
+  checkAllocation("", "spp", std::to_string(spp),
+                  {{double(hardwareThreads()) * tilePixels * spp * raysPerSample, perRay}},
+                  "the ray buffer of " + std::to_string(hardwareThreads()) + " tiles of " + std::to_string(int64_t(tilePixels)) +
+                      " pixels in flight");
+}
+
 }  // namespace
 
 FieldRender renderThroughCamera(const Field& field, const CameraModel& camera, const PixelSampler& sampler,
@@ -131,6 +154,7 @@ FieldRender renderThroughCamera(const Field& field, const CameraModel& camera, c
   const auto t0 = std::chrono::steady_clock::now();
   const int W = camera.width(), H = camera.height();
   const TileRenderer tiles(field, camera, sampler, film, settings);
+  checkRenderSize(W, H, film.channels().size(), settings.spp, tiles.raysPerSample());
   FieldRender out;
   out.image = Image(W, H, film.channels());
   std::atomic<uint64_t> cameraRays{0}, hitRays{0};
@@ -139,7 +163,7 @@ FieldRender renderThroughCamera(const Field& field, const CameraModel& camera, c
     const auto [traced, hits] = tiles.render(tile, out.image);
     cameraRays += traced;
     hitRays += hits;
-  }, &bar, 16);
+  }, &bar, kTileSize);
   bar.finish();
   out.stats.cameraRays = cameraRays;
   out.stats.hitRays = hitRays;

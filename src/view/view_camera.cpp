@@ -5,6 +5,7 @@
 
 #include "camera/lens_analysis.h"
 #include "core/error.h"
+#include "core/size_budget.h"
 
 namespace inim {
 
@@ -20,6 +21,9 @@ SensorGeometry viewSensorGeometry(const CameraDescription& c, int width, int hei
   const double pitch = physW / width;
   if (height == 0) height = std::max(1, int(std::lround(physH / pitch)));
   if (height < 1) throw InputError("", "--height", std::to_string(height), "a whole number of pixels >= 1");
+  // Before the renderer's buffers: the RGB image and its accumulators, about 8 floats a pixel.
+  const std::string size = std::to_string(width) + " x " + std::to_string(height);
+  checkAllocation("", "--width/--height", size, {{double(width) * height, 8 * sizeof(float)}}, "a " + size + " view");
   g.widthPx = width;
   g.heightPx = height;
   g.pitchMm = pitch;
