@@ -82,7 +82,7 @@ ObjMesh parseObj(const std::string& text, const std::string& name) {
             parts[k] += c;
           }
         }
-        int iv, it, in_;
+        int iv = -1, it = -1, in_ = -1;  // set by resolve, or fail() throws
         if (parts[0].empty() || !resolve(parts[0], v.size(), &iv) ||
             !resolve(parts[1], vt.size(), &it) || !resolve(parts[2], vn.size(), &in_))
           fail(line, "vertex indices that refer to existing v/vt/vn entries");

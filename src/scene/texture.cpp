@@ -54,12 +54,6 @@ ReflectanceTexture ReflectanceTexture::image(const Image& img, bool repeat) {
 
 namespace {
 
-// Distance from x to the nearest multiple of period.
-inline float distToGrid(float x, float period) {
-  float r = x - period * std::floor(x / period + 0.5f);
-  return std::abs(r);
-}
-
 // A ruler along s with its baseline at t = 0 and ticks toward -t (dir = -1) or +t (dir = +1).
 float rulerInk(float s, float t, float tick, float line, float dir) {
   float tt = t * dir;  // distance from the baseline along the tick direction
