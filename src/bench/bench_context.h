@@ -32,6 +32,10 @@ struct EiaContext {
 };
 EiaContext& eiaContext();
 
+// Registers `fn` under `name` timed in real time (ms): one iteration when `once` (whole runs),
+// else for at least `minTime` seconds.
+void registerTimed(const char* name, void (*fn)(benchmark::State&), bool once, double minTime);
+
 // Peak resident memory of the process so far, MiB.
 double peakRssMiB();
 

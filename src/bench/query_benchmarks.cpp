@@ -169,12 +169,14 @@ void benchEiaField(benchmark::State& state) { fieldLoop(state, eiaContext().quer
 
 }  // namespace
 
+void registerTimed(const char* name, void (*fn)(benchmark::State&), bool once, double minTime) {
+  auto* b = benchmark::RegisterBenchmark(name, fn)->UseRealTime()->Unit(benchmark::kMillisecond);
+  if (once) b->Iterations(1);
+  else b->MinTime(minTime);
+}
+
 void registerQueryBenchmarks(double minTime) {
-  auto reg = [&](const char* name, void (*fn)(benchmark::State&), bool once) {
-    auto* b = benchmark::RegisterBenchmark(name, fn)->UseRealTime()->Unit(benchmark::kMillisecond);
-    if (once) b->Iterations(1);
-    else b->MinTime(minTime);
-  };
+  auto reg = [&](const char* name, void (*fn)(benchmark::State&), bool once) { registerTimed(name, fn, once, minTime); };
   reg("query/bare-embree", benchBareEmbree, false);
   reg("query/inim-hit", benchInimHit, false);
   reg("query/inim-field", benchInimField, false);

@@ -171,11 +171,7 @@ void benchSplatField(benchmark::State& state) {
 }  // namespace
 
 void registerSplatBenchmarks(double minTime) {
-  auto reg = [&](const char* name, void (*fn)(benchmark::State&), bool once) {
-    auto* b = benchmark::RegisterBenchmark(name, fn)->UseRealTime()->Unit(benchmark::kMillisecond);
-    if (once) b->Iterations(1);
-    else b->MinTime(minTime);
-  };
+  auto reg = [&](const char* name, void (*fn)(benchmark::State&), bool once) { registerTimed(name, fn, once, minTime); };
   reg("splats/guitar-eia-default-display", benchSplatEia, true);
   reg("splats/guitar-render-960x540-16spp", benchSplatRender, true);
   reg("splats/guitar-query-960x540", benchSplatField, false);

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/json_config.h"
+#include "fixtures.h"
 
 using namespace inim;
 
@@ -73,17 +74,7 @@ struct TempJson {
   ~TempJson() { std::filesystem::remove(path); }
 };
 
-// Runs f and returns the InputError it throws; a test failure if it throws none.
-template <class F>
-InputError expectInputError(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return InputError("", "", "", "");
-}
+using fixtures::expectInputError;
 
 std::string nested(int levels) { return std::string(size_t(levels), '[') + std::string(size_t(levels), ']'); }
 
