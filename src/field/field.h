@@ -54,8 +54,12 @@ class Field {
   // (seed, ray.id, ray.sample) only, so any batch split gives the same answers.
   virtual void query(std::span<const FieldRay> rays, std::span<const SampledWavelengths> lambda,
                      std::span<FieldSample> out, uint64_t seed) const = 0;
-  // Axis-aligned bounds of the content, in the field frame (for placement and previews).
+  // Axis-aligned bounds of the content, in the field frame (for placement and previews);
+  // lo > hi when unknown (colours answered by an external renderer).
   virtual void bounds(Point3& lo, Point3& hi) const = 0;
+  // False when answers carry no depth (FieldSample::depth stays infinite even on a hit): the
+  // synthesis then decides hits by opacity alone and leaves the Z channel empty.
+  virtual bool answersDepth() const { return true; }
 };
 
 }  // namespace inim

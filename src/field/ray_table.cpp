@@ -146,7 +146,7 @@ ColorTableField ColorTableField::load(const std::string& path, int spp, size_t n
       if (!std::isfinite(v))
         throw InputError(path, "row " + std::to_string(i), std::to_string(v), "finite colours and opacity");
     for (int k = 0; k < 3; ++k) f.rgba_[i * 4 + k] = enc == ColorEncoding::SRGB ? srgbToLinear(c[k]) : c[k];
-    f.rgba_[i * 4 + 3] = c[3];
+    f.rgba_[i * 4 + 3] = std::clamp(c[3], 0.0f, 1.0f);  // coverage
     if (f.hasDepth_) {
       const float z = a.at(r, iz);
       f.depth_[i] = std::isfinite(z) ? z : kInfinity;
@@ -162,8 +162,9 @@ void ColorTableField::query(std::span<const FieldRay> rays, std::span<const Samp
     FieldSample s;
     const size_t k = size_t(rays[i].id) * size_t(spp_) + rays[i].sample;
     if (k < n) {
-      s.rgb = Vec3(rgba_[k * 4], rgba_[k * 4 + 1], rgba_[k * 4 + 2]);
+      // Composited over the display's black: the straight colour weighted by its coverage.
       s.opacity = rgba_[k * 4 + 3];
+      s.rgb = s.opacity * Vec3(rgba_[k * 4], rgba_[k * 4 + 1], rgba_[k * 4 + 2]);
       if (hasDepth_) s.depth = depth_[k];
     }
     out[i] = s;
@@ -193,8 +194,11 @@ std::vector<float> answerRayTable(const Field& field, const RayTable& table, uin
     for (size_t i = 0; i < rays.size(); ++i) {
       const Vec3 rgb = spectral ? toRgb * sampledToXYZ(out[i].L, lambdas[i]) : out[i].rgb;
       float* row = &rows[(b0 + i) * 5];
-      row[0] = rgb.x, row[1] = rgb.y, row[2] = rgb.z;
-      row[3] = out[i].opacity;
+      // Straight colour and coverage, so that A * RGB is the field's radiance again.
+      const float a = std::isfinite(out[i].opacity) ? std::min(out[i].opacity, 1.0f) : 0.0f;
+      const float k = a > 0.0f ? 1.0f / a : 1.0f;
+      row[0] = rgb.x * k, row[1] = rgb.y * k, row[2] = rgb.z * k;
+      row[3] = a > 0.0f ? a : (rgb.x != 0.0f || rgb.y != 0.0f || rgb.z != 0.0f ? 1.0f : 0.0f);
       row[4] = std::isfinite(out[i].depth) ? out[i].depth : std::numeric_limits<float>::infinity();
     }
   }, nullptr, kBatch);

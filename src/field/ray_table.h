@@ -20,9 +20,12 @@
 //    the model's far plane); far < near marks a ray that never reaches the VCP (its colour is
 //    ignored).
 //  - colours: NPY float32/float64 (N, 3 | 4 | 5) R G B [A [depth]], or an EXR laid out like
-//    the rays with channels R G B [A [Z]]. A is the accumulated opacity (1 if absent), depth
-//    the expected distance along the ray in field units (unknown if absent: the EIA's hit
-//    statistics and Z channel are then empty).
+//    the rays with channels R G B [A [Z]]. A is the ray's coverage in [0, 1] (clamped; 1 if
+//    absent) and R G B the colour of what covers it (straight, not multiplied by A): the
+//    display shows that colour composited over its own black, A * RGB (in linear light), so
+//    a renderer's background never reaches the EIA. depth is the expected distance along the
+//    ray in field units, non-finite for a miss. Without depth a ray hits when A >= 0.5
+//    (kHalfCoverage) and the EIA's Z channel and real/virtual counts stay empty.
 #include <string>
 #include <vector>
 
@@ -58,6 +61,10 @@ RayTable readRayTable(const std::string& path, int spp);
 
 enum class ColorEncoding { SRGB, Linear };  // NeRFs trained on photos answer sRGB-encoded values
 
+// Coverage from which a table without depth counts a ray as a hit (the half-coverage rule the
+// Nerfstudio recipe uses to mark misses: below it a NeRF's median depth is undefined).
+constexpr float kHalfCoverage = 0.5f;
+
 // Colours per query ray, answered by index. InputError naming the file when the row count is
 // not `numQueries` (the run that wrote the rays must match: display, layout, spp), the column
 // count is not 3-5, or a value is not finite.
@@ -71,6 +78,7 @@ class ColorTableField : public Field {
              std::span<FieldSample> out, uint64_t seed) const override;
   void bounds(Point3& lo, Point3& hi) const override { lo = lo_, hi = hi_; }
   bool hasDepth() const { return hasDepth_; }
+  bool answersDepth() const override { return hasDepth_; }
 
  private:
   std::string file_;
@@ -82,8 +90,10 @@ class ColorTableField : public Field {
 };
 
 // One of inim's own fields answering a ray table as an external renderer would (`inim query`):
-// N x 5 floats, row i = linear Rec.709 R G B, opacity and depth (inf when nothing was hit) of
-// ray i. A spectral field is sampled at one visible wavelength packet per ray, drawn from
+// N x 5 floats, row i = linear Rec.709 R G B (straight: the field's radiance divided by its
+// opacity), opacity and depth (inf when nothing was hit) of ray i, so that A * RGB gives the
+// field's radiance back. Light without coverage (a field's background seen through nothing)
+// is written with A = 1 and depth inf: a miss that still shows that light. A spectral field is sampled at one visible wavelength packet per ray, drawn from
 // (seed, ray id, sample); rays that never reach the VCP (far < near) answer nothing.
 std::vector<float> answerRayTable(const Field& field, const RayTable& table, uint64_t seed);
 // Writes such rows as ColorTableField::load reads them: .npy (float32 N x 5) or .exr (R G B A

@@ -57,7 +57,7 @@ LoadedField loadField(const std::string& path, const std::string& key) {
 }
 
 LoadedField loadFieldColors(const std::string& path, int spp, size_t numQueries, ColorEncoding encoding) {
-  const Point3 lo(-1e6f), hi(1e6f);
+  const Point3 lo(kInfinity), hi(-kInfinity);  // unknown: the table has no geometry
   LoadedField f;
   f.field = std::make_unique<ColorTableField>(ColorTableField::load(path, spp, numQueries, encoding, lo, hi));
   f.path = path;

@@ -1,5 +1,6 @@
 #include "synthesis/eia_synthesis.h"
 
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -11,6 +12,7 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/rng.h"
+#include "field/ray_table.h"
 #include "rays/pinhole_rays.h"
 #include "spectral/cmf_table.h"
 #include "synthesis/orthoscopic.h"
@@ -49,6 +51,8 @@ void validate(const SynthesisSettings& s, const EiLayout& L) {
 void locateScene(const Field& field, const OrthoscopicQuery& oq, double vcpMm, SynthesisStats& st) {
   Point3 lo, hi;
   field.bounds(lo, hi);
+  st.sceneBoundsKnown = lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z;
+  if (!st.sceneBoundsKnown) return;  // colours from elsewhere: nothing to locate
   Point3d dlo(std::numeric_limits<double>::infinity()), dhi(-std::numeric_limits<double>::infinity());
   for (int c = 0; c < 8; ++c) {
     Point3d p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
@@ -69,7 +73,8 @@ class DisplayRayQueries {
   DisplayRayQueries(const EiLayout& L, const Field& field, const SynthesisSettings& s, const OrthoscopicQuery& oq,
                     const PanelColor& color, SynthesisResult& res, std::vector<uint8_t>& hitFlag)
       : L_(L), field_(field), s_(s), oq_(oq), res_(res), hitFlag_(hitFlag),
-        spectral_(field.encoding() == FieldEncoding::Spectral), colorSpace_(field.colorSpace()), spp_(s.spp),
+        spectral_(field.encoding() == FieldEncoding::Spectral), depth_(field.answersDepth()),
+        colorSpace_(field.colorSpace()), spp_(s.spp),
         toDrive_(color, DriveSettings{}), onPlaneTol_(float(0.5 * L.pixelMm)),
         batchRays_(std::max<int64_t>(1, s.raysPerBatch / s.spp)), cmf_(cmfTable()) {}
 
@@ -151,7 +156,7 @@ class DisplayRayQueries {
     const OrthoscopicQuery::Query& q = b.qs[i];
     Vec3 sum(0.0f);
     float alpha = 0.0f, zSum = 0.0f;
-    int zCount = 0;
+    int hitCount = 0;
     if (q.ray.tFar >= 0.0f) {
       for (int k = 0; k < spp_; ++k) {
         const size_t j = i * size_t(spp_) + size_t(k);
@@ -159,18 +164,20 @@ class DisplayRayQueries {
         Vec3 c = spectral_ ? cmf_.toXYZ(fs.L, b.lambdas[j]) : fs.rgb;
         if (isFinite(c)) sum += c;
         if (std::isfinite(fs.opacity)) alpha += fs.opacity;
-        if (std::isfinite(fs.depth) && fs.opacity > 0.0f) {
+        if (!depth_) {
+          hitCount += fs.opacity >= kHalfCoverage;  // no depth: coverage alone decides
+        } else if (std::isfinite(fs.depth) && fs.opacity > 0.0f) {
           zSum += float(OrthoscopicQuery::hitZ(q, fs.depth));
-          ++zCount;
+          ++hitCount;
         }
       }
     }
-    if (zCount > 0) {
+    if (hitCount > 0) {
       hitFlag_[size_t(r)] = 1;
       ++local.hits;
-      float z = zSum / float(zCount);
-      if (z > onPlaneTol_) ++local.real;
-      if (z < -onPlaneTol_) ++local.virtualRays;
+      float z = depth_ ? zSum / float(hitCount) : 0.0f;  // Z stays empty without depth
+      if (depth_ && z > onPlaneTol_) ++local.real;
+      if (depth_ && z < -onPlaneTol_) ++local.virtualRays;
       if (s_.aovs) {
         PixelCoord p = eiaPixel(L_, rayAddress(L_, r));
         res_.eia.at(L_.panelCol0 + p.col, L_.panelRow0 + p.row, 3) = alpha / float(spp_);
@@ -187,6 +194,7 @@ class DisplayRayQueries {
   SynthesisResult& res_;
   std::vector<uint8_t>& hitFlag_;
   const bool spectral_;
+  const bool depth_;  // the field answers depths (else hits by coverage, no Z)
   const std::string colorSpace_;
   const int spp_;
   const FieldToDrive toDrive_;
@@ -250,9 +258,12 @@ void addSceneWarnings(double vcpMm, SynthesisStats& st) {
                           "(at most the field's background is seen); raise vcp_mm or move the scene with the "
                           "placement's translate_mm");
   else if (st.emptyEia)
-    st.warnings.push_back("no query ray hit the scene (display bounds x " + range(st.sceneLo.x, st.sceneHi.x) +
-                          ", y " + range(st.sceneLo.y, st.sceneHi.y) + ", z " + range(st.sceneLo.z, st.sceneHi.z) +
-                          " mm): the EIA is empty (at most the field's background is seen)");
+    st.warnings.push_back("no query ray hit the scene" +
+                          (st.sceneBoundsKnown ? " (display bounds x " + range(st.sceneLo.x, st.sceneHi.x) + ", y " +
+                                                     range(st.sceneLo.y, st.sceneHi.y) + ", z " +
+                                                     range(st.sceneLo.z, st.sceneHi.z) + " mm)"
+                                               : std::string()) +
+                          ": the EIA is empty (at most the field's background is seen)");
   if (st.sceneClipped)
     st.notes.push_back("part of the scene (up to z = " + num(st.sceneHi.z) + " mm) lies in front of the VCP at z = " +
                           num(vcpMm) + " mm and is clipped");
@@ -298,6 +309,7 @@ SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field
   st.realRays = queries.realRays;
   st.virtualRays = queries.virtualRays;
   st.emptyEia = st.hitRays == 0;
+  st.hitDepthsKnown = field.answersDepth();
 
   st.exposureUsed = chooseExposure(s, res.drive, hitFlag, st.hitRays);
   exposeAndMapGamut(L, color, s, res);
@@ -357,8 +369,10 @@ std::string summaryText(const SynthesisStats& st, GamutMapping mapping) {
   s += "time:        " + num(st.seconds, "%.2f") + " s (" + num(st.raysPerSecond() / 1e6, "%.3g") +
        " M queries/s)\n";
   s += "scene:       " + std::to_string(st.hitRays) + " rays hit it (" + pct(st.hitRays, st.displayRays) + "): " +
-       std::to_string(st.realRays) + " real (z > 0), " + std::to_string(st.virtualRays) + " virtual (z < 0), " +
-       std::to_string(st.hitRays - st.realRays - st.virtualRays) + " on the MLA plane\n";
+       (st.hitDepthsKnown ? std::to_string(st.realRays) + " real (z > 0), " + std::to_string(st.virtualRays) +
+                                " virtual (z < 0), " + std::to_string(st.hitRays - st.realRays - st.virtualRays) +
+                                " on the MLA plane\n"
+                          : std::string("real / virtual unknown (the field gave no depth)\n"));
   s += "exposure:    " + num(st.exposureUsed, "%.5g") + "\n";
   s += "gamut:       " + std::to_string(st.gamut.outOfGamut) + " of " + std::to_string(st.gamut.pixels) +
        " pixels out of gamut (" + pct(st.gamut.outOfGamut, st.gamut.pixels) + "; " +

@@ -77,6 +77,8 @@ struct SynthesisStats {
   GamutStats gamut;
   // Scene bounds in the display frame (the field's bounds through the placement).
   Point3d sceneLo{0.0}, sceneHi{0.0};
+  bool sceneBoundsKnown = true;  // false for colours from elsewhere (sceneLo/Hi then unset)
+  bool hitDepthsKnown = true;    // false when the field gave no depth (real/virtual counts 0)
   bool sceneBehindVcp = false;  // the whole scene is closer to the viewer than the VCP
   bool sceneClipped = false;    // part of the scene lies in front of the VCP (clipped)
   bool emptyEia = false;        // no query ray hit the scene

@@ -115,7 +115,7 @@ ViewBox viewBox(const EiLayout& L, const Field& field, const Transform& fieldToD
   field.bounds(flo, fhi);
   v.blo = Point3d(std::numeric_limits<double>::infinity());
   v.bhi = Point3d(-std::numeric_limits<double>::infinity());
-  for (int c = 0; c < 8; ++c) {
+  for (int c = 0; c < 8 && flo.x <= fhi.x; ++c) {  // unknown bounds (lo > hi): none drawn
     Point3d p = fieldToDisplay.point(Point3d((c & 1) ? fhi.x : flo.x, (c & 2) ? fhi.y : flo.y, (c & 4) ? fhi.z : flo.z));
     v.blo = glm::min(v.blo, p);
     v.bhi = glm::max(v.bhi, p);

@@ -84,12 +84,39 @@ TEST(RayTable, ColorTableAnswersByIndexAndLinearisesSrgb) {
   std::vector<FieldSample> a(rays.size()), b(rays.size());
   srgb.query(rays, {}, a, 1);
   lin.query(rays, {}, b, 1);
+  // A = 0.75 is coverage: the colour composited over black, in linear light.
   for (size_t i = 0; i < rays.size(); ++i) {
-    EXPECT_NEAR(a[i].rgb.x, 0.214041f, 1e-5f);  // sRGB 0.5 -> linear
-    EXPECT_FLOAT_EQ(a[i].rgb.z, 1.0f);
-    EXPECT_FLOAT_EQ(b[i].rgb.y, float(i) / 16.0f);
+    EXPECT_NEAR(a[i].rgb.x, 0.75f * 0.214041f, 1e-5f);  // sRGB 0.5 -> linear
+    EXPECT_FLOAT_EQ(a[i].rgb.z, 0.75f);
+    EXPECT_FLOAT_EQ(b[i].rgb.y, 0.75f * float(i) / 16.0f);
     EXPECT_FLOAT_EQ(b[i].opacity, 0.75f);
     EXPECT_FLOAT_EQ(b[i].depth, 10.0f + float(i));
+  }
+}
+
+// Without an A column every ray is fully covered; without a depth column the field says it
+// answers no depth (hits then come from coverage alone). A outside [0, 1] is clamped.
+TEST(RayTable, ColorTableWithoutDepthOrOpacityAndClampedCoverage) {
+  for (int cols : {3, 4}) {
+    NpyArray c;
+    c.rows = 3, c.cols = cols;
+    for (float a : {-0.5f, 0.5f, 1.5f}) {
+      for (float v : {0.2f, 0.4f, 0.6f}) c.data.push_back(v);
+      if (cols == 4) c.data.push_back(a);
+    }
+    const std::string p = scratch.path("nodepth.npy");
+    writeNpy(p, c);
+    ColorTableField f = ColorTableField::load(p, 1, 3, ColorEncoding::Linear, Point3(0), Point3(1));
+    EXPECT_FALSE(f.answersDepth());
+    std::vector<FieldRay> rays = someRays(3, 1);
+    std::vector<FieldSample> out(3);
+    f.query(rays, {}, out, 1);
+    const float expectA[3] = {cols == 3 ? 1.0f : 0.0f, cols == 3 ? 1.0f : 0.5f, 1.0f};
+    for (size_t i = 0; i < 3; ++i) {
+      EXPECT_FLOAT_EQ(out[i].opacity, expectA[i]) << cols << " columns, row " << i;
+      EXPECT_FLOAT_EQ(out[i].rgb.y, 0.4f * expectA[i]);
+      EXPECT_FALSE(std::isfinite(out[i].depth));
+    }
   }
 }
 
