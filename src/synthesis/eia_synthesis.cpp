@@ -1,6 +1,5 @@
 #include "synthesis/eia_synthesis.h"
 
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
