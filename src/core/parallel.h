@@ -27,7 +27,8 @@ struct Tile {
 void parallelForTiles(int width, int height, const std::function<void(const Tile&)>& fn,
                       ProgressBar* progress = nullptr, int tileSize = 32);
 
-// Calls fn(begin, end) on chunks of [0, count).
+// Calls fn(begin, end) on chunks of [0, count) of at most `grain`, the same chunks in every run
+// and at any thread count (callers may batch by chunk).
 void parallelForRange(int64_t count, const std::function<void(int64_t, int64_t)>& fn,
                       ProgressBar* progress = nullptr, int64_t grain = 1024);
 
