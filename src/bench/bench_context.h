@@ -32,6 +32,10 @@ struct EiaContext {
 };
 EiaContext& eiaContext();
 
+// The default display's EIA of `field` (auto exposure, 1 sample per display ray): rays/s and
+// peak memory.
+void eiaLoop(benchmark::State& state, const Field& field);
+
 // Registers `fn` under `name` timed in real time (ms): one iteration when `once` (whole runs),
 // else for at least `minTime` seconds.
 void registerTimed(const char* name, void (*fn)(benchmark::State&), bool once, double minTime);

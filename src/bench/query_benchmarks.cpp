@@ -74,19 +74,7 @@ void setRaysPerSecond(benchmark::State& state, size_t rays) {
   state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void benchEia(benchmark::State& state) {
-  SceneContext& c = sceneContext();
-  EiaContext& e = eiaContext();
-  SynthesisSettings s;
-  s.autoExposure = true;
-  s.progress = false;
-  for (auto _ : state) {
-    SynthesisResult r = synthesizeEia(e.layout, e.display.panel, *c.scene, s);
-    benchmark::DoNotOptimize(r.eia.data.data());
-  }
-  setRaysPerSecond(state, size_t(e.layout.numRays()));
-  state.counters["peak_RSS_MiB"] = peakRssMiB();
-}
+void benchEia(benchmark::State& state) { eiaLoop(state, *sceneContext().scene); }
 
 void benchRender(benchmark::State& state) {
   SceneContext& c = sceneContext();
@@ -168,6 +156,19 @@ void benchEiaBareEmbree(benchmark::State& state) { bareEmbreeLoop(state, eiaCont
 void benchEiaField(benchmark::State& state) { fieldLoop(state, eiaContext().queries, eiaContext().lambdas); }
 
 }  // namespace
+
+void eiaLoop(benchmark::State& state, const Field& field) {
+  EiaContext& e = eiaContext();
+  SynthesisSettings s;
+  s.autoExposure = true;
+  s.progress = false;
+  for (auto _ : state) {
+    SynthesisResult r = synthesizeEia(e.layout, e.display.panel, field, s);
+    benchmark::DoNotOptimize(r.eia.data.data());
+  }
+  setRaysPerSecond(state, size_t(e.layout.numRays()));
+  state.counters["peak_RSS_MiB"] = peakRssMiB();
+}
 
 void registerTimed(const char* name, void (*fn)(benchmark::State&), bool once, double minTime) {
   auto* b = benchmark::RegisterBenchmark(name, fn)->UseRealTime()->Unit(benchmark::kMillisecond);

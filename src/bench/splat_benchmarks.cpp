@@ -61,16 +61,8 @@ void setWorkPerRay(benchmark::State& state, const SplatField& f, const std::vect
 
 void benchSplatEia(benchmark::State& state) {
   SplatContext& c = splatContext();
-  EiaContext& e = eiaContext();
-  SynthesisSettings s;
-  s.autoExposure = true;
-  s.progress = false;
-  for (auto _ : state) {
-    SynthesisResult r = synthesizeEia(e.layout, e.display.panel, *c.loaded.field, s);
-    benchmark::DoNotOptimize(r.eia.data.data());
-  }
-  state.counters["rays/s"] = benchmark::Counter(double(e.layout.numRays()) * s.spp, benchmark::Counter::kIsIterationInvariantRate);
-  setWorkPerRay(state, *c.field, e.queries, 16);
+  eiaLoop(state, *c.loaded.field);
+  setWorkPerRay(state, *c.field, eiaContext().queries, 16);
 }
 
 void benchSplatRender(benchmark::State& state) {

@@ -76,9 +76,6 @@ Inputs loadInputs(const Fig11Settings& s) {
   return in;
 }
 
-// The top of the contact sheet's error-map scale (CIEDE2000; larger errors saturate).
-constexpr double kErrorMapMax = 50.0;
-
 void writeJson(const Json& j, const std::string& path) { writeTextFile(path, j.dump(2) + "\n"); }
 
 std::optional<ViewPair>& sheetSlot(Fig11Views& sheet, const std::string& name) {
@@ -173,12 +170,6 @@ class Fig11Run {
                              in_.distanceMm, camera);
   }
 
-  // CIEDE2000 per pixel, 0 to kErrorMapMax, over the pixels that see the display.
-  static Image errorMap(const PoseImages& img, const PixelMask& mask) {
-    const std::vector<float> de = deltaE2000Map(img.refSrgb, img.recSrgb, "srgb", "srgb");
-    return errorMapImage(de, img.refSrgb.width, img.refSrgb.height, kErrorMapMax, &mask.on);
-  }
-
   void record(const Fig11View& v, const PoseImages& img, const PixelMask& mask) {
     Json mj = metricsJson(v.metrics);
     mj["rot_h_deg"] = v.pose.rotHDeg;
@@ -186,7 +177,7 @@ class Fig11Run {
     mj["reconstruction_seconds"] = v.reconstructionSeconds;
     metrics[v.name] = mj;
     rows.push_back(metricsCsvRow(v.name, v.metrics));
-    sheetSlot(sheet, v.name) = ViewPair{v.label, img.refSrgb, img.recSrgb, errorMap(img, mask)};
+    sheetSlot(sheet, v.name) = ViewPair{v.label, img.refSrgb, img.recSrgb, errorMap(deltaE2000Of(img), img, mask)};
   }
 
   // The budget's rungs at this pose, against the same reference and a second one (another

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "analysis/contact_sheet.h"
+#include "analysis/metrics.h"
 #include "core/geometry.h"
 
 namespace inim {
@@ -17,6 +19,14 @@ PoseImages exposeAlike(const Image& rec, const Image& ref, double refToCdM2, con
   p.recSrgb = cameraRgbToSrgb(p.recExposed, sensor);
   p.refSrgb = cameraRgbToSrgb(p.refExposed, sensor);
   return p;
+}
+
+std::vector<float> deltaE2000Of(const PoseImages& img) {
+  return deltaE2000Map(img.refSrgb, img.recSrgb, "srgb", "srgb");
+}
+
+Image errorMap(const std::vector<float>& deltaE, const PoseImages& img, const PixelMask& mask) {
+  return errorMapImage(deltaE, img.refSrgb.width, img.refSrgb.height, kErrorMapMax, &mask.on);
 }
 
 BandLimit bandLimitOf(double lensPitchMm, double eiPixelMm, double gapMm, double distanceMm, const CameraModel& camera) {

@@ -11,6 +11,7 @@
 #include "camera/sensor.h"
 #include "core/image.h"
 #include "core/json_config.h"
+#include "core/pixel_mask.h"
 #include "experiments/fig11_depth.h"
 #include "view/view_image.h"
 
@@ -29,6 +30,12 @@ struct PoseImages {
 // visible in the metrics.
 PoseImages exposeAlike(const Image& rec, const Image& ref, double refToCdM2, const CameraSensor& sensor,
                        const Exposure& e = Exposure{});
+
+// The per-pixel error maps of fig11's contact sheet and of `inim view --reference`: CIEDE2000 of
+// the sRGB images, shown 0 to kErrorMapMax (viridis; larger errors saturate), grey off the mask.
+constexpr double kErrorMapMax = 50.0;
+std::vector<float> deltaE2000Of(const PoseImages& img);
+Image errorMap(const std::vector<float>& deltaE, const PoseImages& img, const PixelMask& mask);
 
 // The display's sampling limit for this camera (analysis/band_limit.h): the lenslet pitch, the
 // panel pixel, the gap, the camera distance and the footprint of an image pixel on the MLA plane

@@ -22,8 +22,6 @@ namespace inim {
 
 namespace {
 
-constexpr double kErrorMapMax = 50.0;  // CIEDE2000 at the top of the error map (as fig11's)
-
 // Everything the comparison reads besides the view's own inputs, loaded before any work.
 struct ReferenceInputs {
   LoadedField field;
@@ -137,10 +135,9 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
   const Image limited = bandLimitedReference(img.refExposed, depth, band);
   r.bandLimitedMetrics = compareImages(cameraRgbToSrgb(limited, cs.desc.sensor), img.recSrgb, copt, &mask,
                                        "band-limited reference", "view");
-  const std::vector<float> de = deltaE2000Map(img.refSrgb, img.recSrgb, "srgb", "srgb");
+  const std::vector<float> de = deltaE2000Of(img);
   if (depth.present) r.depthBins = errorVsDepth(img.refExposed, img.recExposed, depth.z, depth.coverage, &mask, {}, &de);
-  writeImage(errorMapImage(de, img.refSrgb.width, img.refSrgb.height, kErrorMapMax, &mask.on),
-             out(sibling(s.camera.out, "_error.png")));
+  writeImage(errorMap(de, img, mask), out(sibling(s.camera.out, "_error.png")));
 
   Json m = metricsJson(r.metrics);
   m["pose"] = cs.pose.describe();
