@@ -18,6 +18,10 @@
 //                          the means
 //   radiance/eia-query     the default display's EIA from a trained model (when one is given);
 //                          target <= 30 s on 2 cores
+//   place/level0-update/F  the placement page's server: a change of state to its level-0
+//                          preview ready (one ray per lenslet, PNG), for the default scene, the
+//                          shipped splats and a trained model (when one is given); target
+//                          <= 100 ms on 2 cores
 //   radiance/train-lego    train on the Lego scene (when its folder is given) at 200 x 200, every
 //                          8th view held out; reports the held-out PSNR; target >= 28 dB within
 //                          10 minutes

@@ -23,5 +23,6 @@ void addQueryCommand(CLI::App& app);      // inim query --field F --rays R --out
 void addTrainCommand(CLI::App& app);      // inim train --data DIR --out MODEL
 void addEvalCommand(CLI::App& app);       // inim eval --model MODEL --data DIR
 void addCaptureCommand(CLI::App& app);    // inim capture --scene FILE --out DIR
+void addPlaceCommand(CLI::App& app);      // inim place [--scene F | --field M]
 
 }  // namespace inim::cli

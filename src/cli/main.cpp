@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   inim::cli::addDisplayCommand(app);
   inim::cli::addRaysCommand(app);
   inim::cli::addEiaCommand(app);
+  inim::cli::addPlaceCommand(app);
   inim::cli::addTriadsCommand(app);
   inim::cli::addViewCommand(app);
   inim::cli::addReferenceCommand(app);

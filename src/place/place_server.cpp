@@ -1,0 +1,258 @@
+#include "place/place_server.h"
+
+#include <civetweb.h>
+
+#include <charconv>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "core/output_file.h"
+#include "place/place_jobs.h"
+#include "place/place_session.h"
+
+namespace inim {
+
+std::string randomToken() {
+  std::random_device rd;
+  static const char* hex = "0123456789abcdef";
+  std::string t;
+  for (int i = 0; i < 32; ++i) t += hex[rd() & 15u];
+  return t;
+}
+
+bool constantTimeEqual(const std::string& a, const std::string& b) {
+  unsigned diff = unsigned(a.size() ^ b.size());
+  const size_t n = std::max(a.size(), b.size());
+  for (size_t i = 0; i < n; ++i) {
+    const unsigned char x = i < a.size() ? a[i] : 0, y = i < b.size() ? b[i] : 0;
+    diff |= unsigned(x ^ y);
+  }
+  return diff == 0;
+}
+
+bool isLoopbackHost(const std::string& host) {
+  return host == "localhost" || host == "::1" || host == "[::1]" || host.rfind("127.", 0) == 0;
+}
+
+namespace {
+
+struct MethodNotAllowed {
+  std::string allowed;
+};
+
+struct Answer {
+  int status = 200;
+  std::string type = "application/json", body, headers;
+};
+
+const char* statusText(int s) {
+  switch (s) {
+    case 200: return "OK";
+    case 202: return "Accepted";
+    case 400: return "Bad Request";
+    case 403: return "Forbidden";
+    case 404: return "Not Found";
+    case 405: return "Method Not Allowed";
+    case 409: return "Conflict";
+    case 503: return "Service Unavailable";
+    default: return "Internal Server Error";
+  }
+}
+
+Answer json(const Json& j, int status = 200) { return {status, "application/json", j.dump(), ""}; }
+Answer error(int status, const std::string& message) { return json({{"error", message}}, status); }
+
+void send(mg_connection* c, const Answer& a) {
+  mg_printf(c,
+            "HTTP/1.1 %d %s\r\nContent-Type: %s\r\nContent-Length: %zu\r\nCache-Control: no-store\r\n"
+            "X-Content-Type-Options: nosniff\r\n%sConnection: close\r\n\r\n",
+            a.status, statusText(a.status), a.type.c_str(), a.body.size(), a.headers.c_str());
+  mg_write(c, a.body.data(), a.body.size());
+}
+
+std::string queryVar(const mg_request_info* ri, const char* name) {
+  if (!ri->query_string) return {};
+  char buf[256];
+  const int n = mg_get_var(ri->query_string, std::strlen(ri->query_string), name, buf, sizeof buf);
+  return n >= 0 ? std::string(buf, size_t(n)) : std::string();
+}
+
+// A whole number from a query parameter; InputError naming it otherwise.
+uint64_t queryNumber(const mg_request_info* ri, const char* name) {
+  const std::string s = queryVar(ri, name);
+  uint64_t v = 0;
+  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc() || p != s.data() + s.size())
+    throw InputError("request", name, "\"" + s.substr(0, 40) + "\"", "a whole number");
+  return v;
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return {};
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// The request body, or nullopt when it is over `limit` bytes. The rest of a body over the limit
+// is read and dropped (up to 64 MiB), so that the client gets the 400 instead of a reset.
+std::optional<std::string> readBody(mg_connection* c, size_t limit) {
+  std::string body;
+  char buf[16384];
+  int n;
+  size_t total = 0;
+  while (total < (size_t(64) << 20) && (n = mg_read(c, buf, sizeof buf)) > 0) {
+    total += size_t(n);
+    if (total <= limit) body.append(buf, size_t(n));
+  }
+  if (total > limit) return std::nullopt;
+  return body;
+}
+
+Answer imageAnswer(const ImageAnswer& a, int level) {
+  using S = ImageAnswer::Status;
+  if (a.status == S::Stale) return error(409, "revision " + std::to_string(a.revision) + " is stale");
+  if (a.status == S::Future) return error(400, "revision " + std::to_string(a.revision) + " does not exist yet");
+  if (a.status == S::Timeout) return error(503, "the image is not ready yet");
+  if (a.status == S::Failed) return error(500, a.error);
+  char ms[32];
+  std::snprintf(ms, sizeof ms, "%.1f", a.serverMs);
+  Answer r{200, "image/png", a.png, ""};
+  r.headers = "X-Inim-Revision: " + std::to_string(a.revision) + "\r\nX-Inim-Level: " + std::to_string(level) +
+              "\r\nX-Inim-Server-Ms: " + ms + "\r\nX-Inim-Counts: " + a.counts.dump() + "\r\n";
+  return r;
+}
+
+Answer staticFile(const std::string& name, const std::string& type) {
+  const std::string body = readFile(dataPath("web/place/" + name));
+  if (body.empty()) return error(404, "web/place/" + name + " is missing");
+  return {200, type, body, ""};
+}
+
+}  // namespace
+
+PlaceServer::PlaceServer(PlaceSession& session, const PlaceServerOptions& options)
+    : session_(session), options_(options), token_(options.token.empty() ? randomToken() : options.token) {
+  mg_init_library(0);
+  const std::string host = options.host.find(':') != std::string::npos && options.host[0] != '['
+                               ? "[" + options.host + "]" : options.host;
+  const std::string ports = host + ":" + std::to_string(options.port);
+  const char* opts[] = {"listening_ports", ports.c_str(), "num_threads", "16", "request_timeout_ms", "120000",
+                        nullptr};
+  mg_callbacks callbacks{};
+  ctx_ = mg_start(&callbacks, this, opts);
+  if (!ctx_) {
+    mg_exit_library();
+    throw InputError("", "--port", ports, "an address and port this machine can listen on (free, permitted)");
+  }
+  mg_set_request_handler(ctx_, "/", &PlaceServer::handleRequest, this);
+  mg_server_port sp[4];
+  const int n = mg_get_server_ports(ctx_, 4, sp);
+  port_ = n > 0 ? sp[0].port : options.port;
+}
+
+PlaceServer::~PlaceServer() {
+  mg_stop(ctx_);
+  mg_exit_library();
+}
+
+std::string PlaceServer::url() const {
+  const std::string host = options_.host.find(':') != std::string::npos && options_.host[0] != '['
+                               ? "[" + options_.host + "]" : options_.host;
+  return "http://" + host + ":" + std::to_string(port_) + "/?token=" + token_;
+}
+
+int PlaceServer::handleRequest(mg_connection* c, void* self) { return static_cast<PlaceServer*>(self)->handle(c); }
+
+int PlaceServer::handle(mg_connection* c) {
+  const mg_request_info* ri = mg_get_request_info(c);
+  const std::string method = ri->request_method ? ri->request_method : "", path = ri->local_uri ? ri->local_uri : "";
+  // Access: the token as query parameter, header or the page's cookie.
+  std::string given = queryVar(ri, "token");
+  if (given.empty() && mg_get_header(c, "X-Inim-Token")) given = mg_get_header(c, "X-Inim-Token");
+  if (given.empty() && mg_get_header(c, "Cookie")) {
+    char buf[128];
+    const int n = mg_get_cookie(mg_get_header(c, "Cookie"), "inim_token", buf, sizeof buf);
+    if (n > 0) given.assign(buf, size_t(n));
+  }
+  Answer a;
+  if (!constantTimeEqual(given, token_)) {
+    a = error(403, "forbidden: open the URL inim place printed (it carries the access token)");
+    send(c, a);
+    return a.status;
+  }
+  try {
+    std::optional<std::string> body;
+    if (method == "PUT" || method == "POST") {
+      body = readBody(c, options_.maxBodyBytes);
+      if (!body) throw InputError("request body", "", "over " + std::to_string(options_.maxBodyBytes) + " bytes",
+                                  "a body of at most 1 MiB");
+    }
+    const auto timeout = std::chrono::milliseconds(options_.imageTimeoutMs);
+    auto only = [&](const char* m) {
+      if (method != m) throw MethodNotAllowed{m};
+    };
+    if (path == "/" || path == "/index.html") {
+      only("GET");
+      a = staticFile("index.html", "text/html; charset=utf-8");
+      a.headers = "Set-Cookie: inim_token=" + token_ + "; Path=/; HttpOnly; SameSite=Strict\r\n";
+    } else if (path == "/place.js") {
+      only("GET"), a = staticFile("place.js", "text/javascript; charset=utf-8");
+    } else if (path == "/place.css") {
+      only("GET"), a = staticFile("place.css", "text/css; charset=utf-8");
+    } else if (path == "/api/info") {
+      only("GET"), a = json(session_.info());
+    } else if (path == "/api/state") {
+      if (method == "GET") a = json(session_.state());
+      else only("PUT"), a = json(session_.putState(*body));
+    } else if (path == "/api/preview") {
+      only("GET");
+      const uint64_t level = queryNumber(ri, "level");
+      if (level > 2) throw InputError("request", "level", std::to_string(level), "0, 1 or 2");
+      a = imageAnswer(session_.image(ImageKind(level), queryNumber(ri, "revision"), timeout), int(level));
+    } else if (path == "/api/diagram") {
+      only("GET");
+      a = imageAnswer(session_.image(ImageKind::Diagram, queryNumber(ri, "revision"), timeout), -1);
+    } else if (path == "/api/write" || path == "/api/predict") {
+      only("POST");
+      const uint64_t id = session_.jobs().submit(parseJsonText(*body, "request body"), session_.jobInput(),
+                                                 path == "/api/predict");
+      a = json({{"job", id}}, 202);
+    } else if (path == "/api/jobs") {
+      only("GET"), a = json(session_.jobs().list());
+    } else if (path.rfind("/api/jobs/", 0) == 0) {
+      only("GET");
+      uint64_t id = 0;
+      const std::string s = path.substr(10);
+      auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), id);
+      auto j = (ec == std::errc() && p == s.data() + s.size()) ? session_.jobs().get(id) : std::nullopt;
+      a = j ? json(*j) : error(404, "no job " + s.substr(0, 40));
+    } else if (path == "/api/file") {
+      only("GET");
+      const std::string name = sanitizeOutputName(queryVar(ri, "name"));
+      if (name.size() < 5 || name.substr(name.size() - 4) != ".png")
+        throw InputError("request", "name", "\"" + name + "\"", "the name of a .png in the output folder");
+      const std::string bytes = readFile(session_.outDir() + "/" + name);
+      a = bytes.empty() ? error(404, "no file " + name) : Answer{200, "image/png", bytes, ""};
+    } else if (path == "/api/latency") {
+      only("GET"), a = json(session_.latency());
+    } else {
+      a = error(404, "no such path: " + path.substr(0, 100));
+    }
+  } catch (const InputError& e) {
+    a = error(400, e.what());
+  } catch (const MethodNotAllowed& e) {
+    a = error(405, method.substr(0, 10) + " not allowed; " + path.substr(0, 100) + " takes " + e.allowed);
+  } catch (const std::exception& e) {
+    a = error(500, e.what());
+  }
+  send(c, a);
+  return a.status;
+}
+
+}  // namespace inim

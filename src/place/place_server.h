@@ -1,0 +1,56 @@
+#pragma once
+// The placement page's HTTP server (docs/place-api.md) on civetweb: the page's files from
+// web/place/ under the data folder, the JSON API over a PlaceSession, and access by token.
+// civetweb parses HTTP; this file only routes, checks and answers.
+//
+//   PlaceServer server(session, {"127.0.0.1", 0});
+//   std::puts(server.url().c_str());  // http://127.0.0.1:PORT/?token=...
+#include <cstddef>
+#include <string>
+
+struct mg_context;
+struct mg_connection;
+
+namespace inim {
+
+class PlaceSession;
+
+struct PlaceServerOptions {
+  std::string host = "127.0.0.1";
+  int port = 0;                          // 0: a free port
+  std::string token;                     // "": 32 random hex digits
+  size_t maxBodyBytes = 1 << 20;         // larger bodies get 400
+  int imageTimeoutMs = 60000;            // a preview request waits at most this long
+};
+
+// A random token of 32 hex digits (from the system's random device).
+std::string randomToken();
+// Equal strings, in time that does not depend on where they differ.
+bool constantTimeEqual(const std::string& a, const std::string& b);
+// Whether `host` names a loopback interface (127.0.0.0/8, ::1, localhost).
+bool isLoopbackHost(const std::string& host);
+
+class PlaceServer {
+ public:
+  // Starts listening; std::runtime_error when the port cannot be had.
+  PlaceServer(PlaceSession& session, const PlaceServerOptions& options);
+  ~PlaceServer();
+  PlaceServer(const PlaceServer&) = delete;
+  PlaceServer& operator=(const PlaceServer&) = delete;
+
+  int port() const { return port_; }
+  const std::string& token() const { return token_; }
+  std::string url() const;
+
+ private:
+  static int handleRequest(mg_connection* c, void* self);
+  int handle(mg_connection* c);
+
+  PlaceSession& session_;
+  PlaceServerOptions options_;
+  std::string token_;
+  int port_ = 0;
+  mg_context* ctx_ = nullptr;
+};
+
+}  // namespace inim

@@ -1,0 +1,270 @@
+#include "place/place_session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/interrupt.h"
+#include "core/output_file.h"
+#include "place/place_preview.h"
+#include "synthesis/display_overrides.h"
+#include "synthesis/preview.h"
+
+namespace inim {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+std::string absolutePath(const std::string& p) { return fs::absolute(fs::path(p)).lexically_normal().string(); }
+
+// The display files the page may choose: optics/displays/*.json and the one given.
+std::vector<std::string> displayFiles(const std::string& given) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dataPath("optics/displays"), ec))
+    if (e.path().extension() == ".json") files.push_back(absolutePath(e.path().string()));
+  std::sort(files.begin(), files.end());
+  if (std::find(files.begin(), files.end(), given) == files.end()) files.push_back(given);
+  return files;
+}
+
+const char* kindName(ImageKind k) {
+  static const char* names[] = {"level0", "level1", "level2", "diagram"};
+  return names[int(k)];
+}
+
+Json countsJson(const PreviewCounts& c) {
+  return {{"real", c.real}, {"virtual", c.virtualHits}, {"on_plane", c.onPlane}, {"missed", c.missed}};
+}
+
+Json statsJson(std::deque<double> v) {
+  if (v.empty()) return {{"count", 0}};
+  std::sort(v.begin(), v.end());
+  auto at = [&](double q) { return v[std::min(v.size() - 1, size_t(q * double(v.size())))]; };
+  return {{"count", v.size()}, {"median_ms", at(0.5)}, {"p95_ms", at(0.95)}, {"max_ms", v.back()}};
+}
+
+}  // namespace
+
+PlaceSession::PlaceSession(const PlaceOptions& o)
+    : seed_(o.seed), quiet_(o.quietMs), latencies_(kImageKinds) {
+  const RunFile run = o.runPath.empty() ? RunFile{} : loadRunFile(o.runPath);
+  fieldPath_ = absolutePath(!o.fieldPath.empty() ? o.fieldPath : run.scene.value_or(defaultScenePath()));
+  field_ = loadField(fieldPath_, o.fieldPath.empty() && run.scene ? "scene (" + o.runPath + ")" : "field");
+  outDir_ = absolutePath(o.outDir);
+
+  PlaceState s;
+  s.display = absolutePath(displayPathOrDefault(!o.displayPath.empty() ? o.displayPath : run.display.value_or("")));
+  const Display d = loadDisplay(s.display);
+  s.layout = run.layout.value_or(d.layout == EiLayoutKind::ToedIn ? "toed-in" : "parallel");
+  s.viewingDistanceMm = run.viewingDistanceMm.value_or(d.viewingDistanceMm.value_or(350.0));
+  s.vcpMm = run.vcpMm.value_or(s.vcpMm);
+  s.placement = resolvePlacement(run.placement ? run.placement : field_.placement, {});
+  displays_ = displayFiles(s.display);
+  defaults_ = s;
+  current_ = {s, displayFor(s), Clock::now()};
+  fs::create_directories(outDir_);  // only once everything loaded: a bad start writes nothing
+  jobs_ = std::make_unique<PlaceJobs>(outDir_);
+  worker_ = std::thread([this] { workerLoop(); });
+}
+
+PlaceSession::~PlaceSession() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  changed_.notify_all();
+  worker_.join();
+}
+
+std::shared_ptr<const PlaceDisplay> PlaceSession::displayFor(const PlaceState& s) const {
+  auto pd = std::make_shared<PlaceDisplay>();
+  pd->display = loadDisplay(s.display);
+  LayoutOverride lo;
+  lo.layout = s.layout;
+  lo.viewingDistanceMm = s.viewingDistanceMm;
+  pd->layout = applyLayoutOverride(pd->display, lo);
+  return pd;
+}
+
+Json PlaceSession::state() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return placeStateJson(current_.state);
+}
+
+Json PlaceSession::putState(const std::string& body) {
+  const Json patch = parseJsonText(body, "request body");
+  PlaceState cur;
+  std::shared_ptr<const PlaceDisplay> disp;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cur = current_.state;
+    disp = current_.display;
+  }
+  PlaceState next = applyStatePatch(cur, patch, displays_);
+  // A new display file, layout or distance is loaded and checked before the state changes.
+  if (next.display != cur.display || next.layout != cur.layout || next.viewingDistanceMm != cur.viewingDistanceMm)
+    disp = displayFor(next);
+  std::lock_guard<std::mutex> lock(mutex_);
+  next.revision = current_.state.revision + 1;
+  current_ = {next, disp, Clock::now()};
+  results_.clear();
+  changed_.notify_all();
+  return placeStateJson(next);
+}
+
+ImageAnswer PlaceSession::image(ImageKind kind, uint64_t revision, std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  const auto deadline = Clock::now() + timeout;
+  ImageAnswer a;
+  a.revision = revision;
+  while (true) {
+    if (revision < current_.state.revision) return a.status = ImageAnswer::Status::Stale, a;
+    if (revision > current_.state.revision) return a.status = ImageAnswer::Status::Future, a;
+    auto it = results_.find(int(kind));
+    if (it != results_.end()) {
+      a.status = it->second.error.empty() ? ImageAnswer::Status::Ready : ImageAnswer::Status::Failed;
+      a.png = it->second.png, a.counts = it->second.counts, a.serverMs = it->second.serverMs;
+      a.error = it->second.error;
+      return a;
+    }
+    if (changed_.wait_until(lock, deadline) == std::cv_status::timeout)
+      return a.status = ImageAnswer::Status::Timeout, a;
+  }
+}
+
+// The next image to render for the current revision, or none (waiting until there is one).
+std::optional<ImageKind> PlaceSession::nextWork(std::unique_lock<std::mutex>& lock) {
+  while (!stop_) {
+    for (ImageKind k : {ImageKind::Level0, ImageKind::Diagram})
+      if (!results_.count(int(k))) return k;
+    const auto still = current_.changedAt + quiet_;
+    if (Clock::now() < still) {
+      changed_.wait_until(lock, still);
+      continue;
+    }
+    for (ImageKind k : {ImageKind::Level1, ImageKind::Level2})
+      if (!results_.count(int(k))) return k;
+    changed_.wait(lock);
+  }
+  return std::nullopt;
+}
+
+void PlaceSession::workerLoop() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (auto kind = nextWork(lock)) {
+    const Snapshot snap = current_;
+    lock.unlock();
+    Rendered r;
+    bool cancelled = false;
+    try {
+      r = render(*kind, snap);
+    } catch (const PreviewCancelled&) {
+      cancelled = true;
+    } catch (const Interrupted&) {  // Ctrl-C: the command is stopping the session
+      cancelled = true;
+    } catch (const std::exception& e) {
+      r.error = e.what();
+    }
+    lock.lock();
+    if (cancelled || stop_ || snap.state.revision != current_.state.revision) continue;
+    r.serverMs = std::chrono::duration<double, std::milli>(Clock::now() - snap.changedAt).count();
+    auto& lat = latencies_[size_t(*kind)];
+    lat.push_back(r.serverMs);
+    if (lat.size() > 1000) lat.pop_front();
+    results_[int(*kind)] = std::move(r);
+    changed_.notify_all();
+  }
+}
+
+PlaceSession::Rendered PlaceSession::render(ImageKind kind, const Snapshot& snap) {
+  const Transform toDisplay = snap.state.placement.toDisplay();
+  const EiLayout& L = snap.display->layout;
+  Rendered r;
+  if (kind == ImageKind::Diagram) {
+    PreviewSettings ps;
+    ps.width = 900;
+    ps.seed = seed_;
+    const PreviewResult p = renderPlacementPreview(L, *field_.field, toDisplay, snap.state.vcpMm, ps);
+    r.png = encodePng(p.image);
+    r.counts = {{"real", p.real}, {"virtual", p.virtualHits}, {"on_plane", p.onPlane}, {"missed", p.missed}};
+    return r;
+  }
+  PreviewRequest req;
+  req.level = int(kind);
+  req.viewingDistanceMm = snap.state.viewingDistanceMm;
+  req.onPlaneToleranceMm = 0.5 * L.lensPitchMm;
+  req.seed = seed_;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    req.exposure = exposure_;
+  }
+  const uint64_t rev = snap.state.revision;
+  auto cancelled = [this, rev] {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return stop_ || current_.state.revision != rev;
+  };
+  const PreviewFrame f = renderPlacePreview(L, *field_.field, toDisplay, snap.state.vcpMm, req, cancelled);
+  if (kind == ImageKind::Level0 && f.counts.missed < f.image.width * f.image.height) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!exposure_) exposure_ = f.exposure;
+  }
+  r.png = encodePng(f.image);
+  r.counts = countsJson(f.counts);
+  return r;
+}
+
+Json PlaceSession::latency() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Json j;
+  for (int k = 0; k < kImageKinds; ++k) j[kindName(ImageKind(k))] = statsJson(latencies_[size_t(k)]);
+  return j;
+}
+
+PlaceJobInput PlaceSession::jobInput() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return {current_.state, fieldPath_, seed_};
+}
+
+Json PlaceSession::info() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const PlaceDisplay& pd = *current_.display;
+  const EiLayout& L = pd.layout;
+  Json f = {{"path", fieldPath_}, {"kind", fieldKindName(field_.kind)}};
+  Point3 lo, hi;
+  field_.field->bounds(lo, hi);
+  if (lo.x <= hi.x) {
+    const Transform t = current_.state.placement.toDisplay();
+    Point3d blo(1e300), bhi(-1e300);
+    for (int c = 0; c < 8; ++c) {
+      const Point3d p = t.point(Point3d((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z));
+      blo = glm::min(blo, p), bhi = glm::max(bhi, p);
+    }
+    f["bounds_mm"] = {{blo.x, blo.y, blo.z}, {bhi.x, bhi.y, bhi.z}};
+  }
+  const AreaMm a = L.activeArea();
+  Json displays = Json::array();
+  for (const auto& d : displays_) displays.push_back({{"path", d}, {"name", fs::path(d).stem().string()}});
+  const double s0 = defaults_.placement.scale.x, half = 0.5 * std::max(a.x1 - a.x0, a.y1 - a.y0);
+  Json levels = Json::array();
+  levels.push_back({{"level", 0}, {"width", L.eiCols}, {"height", L.eiRows}, {"what", "one ray per lenslet"}});
+  levels.push_back({{"level", 1}, {"width", 4 * L.eiCols}, {"height", 4 * L.eiRows}, {"what", "4 x 4 rays per lenslet"}});
+  levels.push_back({{"level", 2}, {"what", "camera at the viewing distance"}});
+  return {{"field", f},
+          {"display", {{"path", current_.state.display}, {"name", pd.display.name}, {"lenslets", {L.eiCols, L.eiRows}},
+                       {"pitch_mm", L.lensPitchMm}, {"gap_mm", L.gapMm}, {"panel_px", {L.panelW, L.panelH}},
+                       {"area_mm", {a.x1 - a.x0, a.y1 - a.y0}}}},
+          {"displays", displays},
+          {"out_dir", outDir_},
+          {"defaults", placeStateJson(defaults_)},
+          {"sliders", {{"translate_mm", {-2.0 * half, 2.0 * half}}, {"rotate_deg", {-180, 180}},
+                       {"scale", {s0 / 10.0, s0 * 10.0}}, {"vcp_mm", {-2.0 * half, 4.0 * half}},
+                       {"viewing_distance_mm", {100, 2000}}}},
+          {"levels", levels},
+          {"on_plane_tolerance_mm", 0.5 * L.lensPitchMm}};
+}
+
+}  // namespace inim

@@ -1,0 +1,117 @@
+#pragma once
+// The placement page's model (docs/place-api.md), apart from HTTP: the field shown, the state
+// the page controls, the previews rendered for it in one worker thread, and the write jobs.
+//
+// A change of state (putState) makes a new revision. The worker renders level 0 of the newest
+// revision at once, then its diagram, then levels 1 and 2 once the state has been still for
+// `quietMs`; a newer revision interrupts it at its next batch of rays (place_preview.h). A
+// request for an image waits until that image of its revision is ready, and is answered
+// "stale" at once when the state has moved on, so the page never waits for old work.
+//
+//   PlaceSession session(options);              // InputError for a bad field, display or run file
+//   Json st = session.putState(R"({"vcp_mm": 80})");  // InputError (400) changes nothing
+//   ImageAnswer a = session.image(ImageKind::Level0, st["revision"], std::chrono::seconds(30));
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/json_config.h"
+#include "display/display.h"
+#include "display/ei_layout.h"
+#include "fields/field_factory.h"
+#include "place/place_jobs.h"
+#include "place/place_state.h"
+
+namespace inim {
+
+struct PlaceOptions {
+  std::string fieldPath;    // "": the default scene
+  std::string displayPath;  // "": the paper's prototype
+  std::string runPath;      // a run file to start from (placement, display, VCP, layout), or ""
+  std::string outDir = "out/place";
+  int quietMs = 150;        // stillness before levels 1 and 2
+  uint64_t seed = 1;
+};
+
+enum class ImageKind { Level0 = 0, Level1 = 1, Level2 = 2, Diagram = 3 };
+constexpr int kImageKinds = 4;
+
+struct ImageAnswer {
+  enum class Status { Ready, Stale, Future, Timeout, Failed } status = Status::Ready;
+  std::string png, error;
+  Json counts;            // {"real", "virtual", "on_plane", "missed"}
+  double serverMs = 0.0;  // the state change (PUT) to this image ready
+  uint64_t revision = 0;
+};
+
+// The display as the state sets it: file, layout and viewing distance applied.
+struct PlaceDisplay {
+  Display display;
+  EiLayout layout;
+};
+
+class PlaceSession {
+ public:
+  explicit PlaceSession(const PlaceOptions& options);
+  ~PlaceSession();
+  PlaceSession(const PlaceSession&) = delete;
+  PlaceSession& operator=(const PlaceSession&) = delete;
+
+  Json info() const;
+  Json state() const;
+  // Applies a JSON body of state keys; InputError (a 400) changes nothing.
+  Json putState(const std::string& body);
+  ImageAnswer image(ImageKind kind, uint64_t revision, std::chrono::milliseconds timeout);
+  // Server-side times from the state change to each image ready: count, median, p95, max (ms).
+  Json latency() const;
+
+  PlaceJobs& jobs() { return *jobs_; }
+  // A snapshot of what a job needs: the state and the field.
+  PlaceJobInput jobInput() const;
+  const std::string& outDir() const { return outDir_; }
+
+ private:
+  struct Snapshot {
+    PlaceState state;
+    std::shared_ptr<const PlaceDisplay> display;
+    std::chrono::steady_clock::time_point changedAt;
+  };
+  struct Rendered {
+    std::string png;
+    Json counts;
+    double serverMs = 0.0;
+    std::string error;
+  };
+
+  void workerLoop();
+  std::optional<ImageKind> nextWork(std::unique_lock<std::mutex>& lock);
+  Rendered render(ImageKind kind, const Snapshot& snap);
+  std::shared_ptr<const PlaceDisplay> displayFor(const PlaceState& s) const;
+
+  LoadedField field_;
+  std::string fieldPath_, outDir_;
+  std::vector<std::string> displays_;
+  PlaceState defaults_;
+  uint64_t seed_;
+  std::chrono::milliseconds quiet_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;  // the state, a result, or stop
+  Snapshot current_;
+  std::map<int, Rendered> results_;   // of current_'s revision, by ImageKind
+  std::optional<double> exposure_;    // fixed by the first level-0 frame, so brightness holds still
+  std::vector<std::deque<double>> latencies_;
+  bool stop_ = false;
+  std::unique_ptr<PlaceJobs> jobs_;
+  std::thread worker_;
+};
+
+}  // namespace inim
