@@ -10,7 +10,11 @@
 
 #include "bench/bench_context.h"
 #include "core/output_file.h"
+#include "fields/field_factory.h"
+#include "place/place_preview.h"
 #include "place/place_session.h"
+#include "synthesis/eia_synthesis.h"
+#include "synthesis/preview.h"
 
 namespace inim::bench {
 
@@ -40,6 +44,22 @@ void placeLoop(benchmark::State& state, const std::string& fieldPath) {
   std::filesystem::remove_all(out, ec);
 }
 
+// The level-0 render alone (no worker, no PNG), and the diagram alone, on the default display.
+void previewLoop(benchmark::State& state, const std::string& fieldPath, bool diagram) {
+  const LoadedField f = loadField(fieldPath, "field");
+  const Transform toDisplay = resolvePlacement(f.placement, {}).toDisplay();
+  const EiLayout& L = eiaContext().layout;
+  for (auto _ : state) {
+    if (diagram) {
+      PreviewSettings ps;
+      ps.width = 900;
+      benchmark::DoNotOptimize(renderPlacementPreview(L, *f.field, toDisplay, kDefaultVcpMm, ps).image.data.data());
+    } else {
+      benchmark::DoNotOptimize(renderPlacePreview(L, *f.field, toDisplay, kDefaultVcpMm, {}).image.data.data());
+    }
+  }
+}
+
 }  // namespace
 
 void registerPlaceBenchmarks(const std::string& modelPath, double minTime) {
@@ -47,6 +67,16 @@ void registerPlaceBenchmarks(const std::string& modelPath, double minTime) {
     benchmark::RegisterBenchmark(name.c_str(), [path](benchmark::State& s) { placeLoop(s, path); })
         ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(minTime);
   };
+  benchmark::RegisterBenchmark("place/level0-render/paper-fig7", [](benchmark::State& s) {
+    previewLoop(s, defaultScenePath(), false);
+  })->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(minTime);
+  benchmark::RegisterBenchmark("place/diagram-render/paper-fig7", [](benchmark::State& s) {
+    previewLoop(s, defaultScenePath(), true);
+  })->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(minTime);
+  if (!modelPath.empty())
+    benchmark::RegisterBenchmark("place/level0-render/model", [modelPath](benchmark::State& s) {
+      previewLoop(s, modelPath, false);
+    })->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(minTime);
   reg("place/level0-update/paper-fig7", defaultScenePath());
   reg("place/level0-update/guitar-splats", dataPath("scenes/splats/guitar.compressed.ply"));
   if (!modelPath.empty()) reg("place/level0-update/model", modelPath);

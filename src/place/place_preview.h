@@ -22,10 +22,9 @@
 #include "core/transform.h"
 #include "display/ei_layout.h"
 #include "field/field.h"
+#include "synthesis/preview.h"  // PreviewCancelled
 
 namespace inim {
-
-struct PreviewCancelled {};
 
 struct PreviewCounts {
   int real = 0, virtualHits = 0, onPlane = 0, missed = 0;

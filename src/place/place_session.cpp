@@ -183,11 +183,17 @@ void PlaceSession::workerLoop() {
 PlaceSession::Rendered PlaceSession::render(ImageKind kind, const Snapshot& snap) {
   const Transform toDisplay = snap.state.placement.toDisplay();
   const EiLayout& L = snap.display->layout;
+  const uint64_t rev = snap.state.revision;
+  auto cancelled = [this, rev] {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return stop_ || current_.state.revision != rev;
+  };
   Rendered r;
   if (kind == ImageKind::Diagram) {
     PreviewSettings ps;
     ps.width = 900;
     ps.seed = seed_;
+    ps.cancelled = cancelled;
     const PreviewResult p = renderPlacementPreview(L, *field_.field, toDisplay, snap.state.vcpMm, ps);
     r.png = encodePng(p.image);
     r.counts = {{"real", p.real}, {"virtual", p.virtualHits}, {"on_plane", p.onPlane}, {"missed", p.missed}};
@@ -202,11 +208,6 @@ PlaceSession::Rendered PlaceSession::render(ImageKind kind, const Snapshot& snap
     std::lock_guard<std::mutex> lock(mutex_);
     req.exposure = exposure_;
   }
-  const uint64_t rev = snap.state.revision;
-  auto cancelled = [this, rev] {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return stop_ || current_.state.revision != rev;
-  };
   const PreviewFrame f = renderPlacePreview(L, *field_.field, toDisplay, snap.state.vcpMm, req, cancelled);
   if (kind == ImageKind::Level0 && f.counts.missed < f.image.width * f.image.height) {
     std::lock_guard<std::mutex> lock(mutex_);

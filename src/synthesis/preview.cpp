@@ -32,7 +32,7 @@ struct CentralHits {
 // The central ray of every lenslet (from the EI centre on the panel through the pinhole),
 // queried in the field; hits within `tol` of z = 0 are on the plane.
 CentralHits traceCentralRays(const EiLayout& L, const Field& field, const OrthoscopicQuery& oq, double tol,
-                             uint64_t seed, PreviewResult& res) {
+                             uint64_t seed, PreviewResult& res, const std::function<bool()>& cancelled) {
   CentralHits h;
   h.K = L.eiCols, h.R = L.eiRows;
   const size_t n = size_t(h.K) * size_t(h.R);
@@ -52,6 +52,7 @@ CentralHits traceCentralRays(const EiLayout& L, const Field& field, const Orthos
     }
   const bool spectral = field.encoding() == FieldEncoding::Spectral;
   parallelForRange(int64_t(n), [&](int64_t a, int64_t b) {
+    if (cancelled && cancelled()) return;  // the caller throws after the loop
     size_t m = size_t(b - a);
     field.query(std::span(rays).subspan(size_t(a), m),
                 spectral ? std::span<const SampledWavelengths>(lambdas).subspan(size_t(a), m)
@@ -256,8 +257,12 @@ PreviewResult renderPlacementPreview(const EiLayout& L, const Field& field, cons
   const int K = L.eiCols;
   const double eiPitch = L.isHex() ? L.eiSitePitchMm : double(L.eiW) * L.pixelMm;
   const double tol = 0.5 * (K > 1 ? std::abs(L.lensX[1] - L.lensX[0]) : eiPitch);
+  auto stopIfCancelled = [&] {
+    if (s.cancelled && s.cancelled()) throw PreviewCancelled{};
+  };
   PreviewResult res;
-  CentralHits h = traceCentralRays(L, field, oq, tol, s.seed, res);
+  CentralHits h = traceCentralRays(L, field, oq, tol, s.seed, res, s.cancelled);
+  stopIfCancelled();
   markCrossings(h, tol, res);
 
   const ViewBox v = viewBox(L, field, fieldToDisplay, vcpMm, h, s.width);
@@ -265,7 +270,9 @@ PreviewResult renderPlacementPreview(const EiLayout& L, const Field& field, cons
   const PreviewInput in{L, h, v, vcpMm};
   for (int view = 0; view < 2; ++view) {
     drawBoundsAndRays(cv, in, view);
+    stopIfCancelled();
     drawPlanesAndHits(cv, in, view);
+    stopIfCancelled();
   }
   drawKey(cv, v);
   res.image = cv.toImage();

@@ -12,6 +12,7 @@
 // the MLA), blue for virtual (z < 0), green on the MLA plane (|z| <= P / 2). Drawn with
 // Cairo and Pango (src/draw).
 #include <cstdint>
+#include <functional>
 
 #include "core/image.h"
 #include "core/transform.h"
@@ -20,9 +21,14 @@
 
 namespace inim {
 
+// Thrown by a preview whose `cancelled` answered true (a newer placement superseded it).
+struct PreviewCancelled {};
+
 struct PreviewSettings {
   int width = 1800;  // image width, px (the height follows the scene's depth extent)
   uint64_t seed = 1;
+  // Asked between the drawing's stages (the live placement page drops superseded work); none: never.
+  std::function<bool()> cancelled;
 };
 
 struct PreviewResult {
