@@ -15,19 +15,7 @@ fi
 PACKAGES=(chromium)
 # A node and npm from elsewhere (nvm, NodeSource) serve as well as Debian's.
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then PACKAGES+=(nodejs npm); fi
-missing=()
-for p in "${PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "browser-test: installing missing Debian packages: ${missing[*]}"
-  SUDO=""
-  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
-else
-  echo "browser-test: chromium, node and npm present"
-fi
+"$ROOT/scripts/setup.sh" --packages-only "${PACKAGES[@]}"
 
 # npm ci in a copy of the manifest, so node_modules lands in build/, not in the source tree;
 # repeated only when the lock file changed.
