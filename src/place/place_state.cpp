@@ -1,9 +1,9 @@
 #include "place/place_state.h"
 
 #include <algorithm>
-#include <cstdio>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace inim {
 
@@ -11,11 +11,7 @@ namespace {
 
 Json vec3Json(const Vec3d& v) { return Json::array({v.x, v.y, v.z}); }
 
-std::string exact(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string exact(double v) { return formatNumber(v, "%.17g"); }  // every bit, as the run file keeps it
 
 std::string range(double lo, double hi) { return "a number in [" + exact(lo) + ", " + exact(hi) + "]"; }
 
