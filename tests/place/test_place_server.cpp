@@ -148,7 +148,7 @@ TEST_F(PlaceServerTest, AStateChangeGivesANewRevisionAndItsPreview) {
 
 TEST_F(PlaceServerTest, BadRequestsAre400AndChangeNothing) {
   const Json before = get("/api/state").json();
-  for (const std::string body : {std::string("{\"vcp_mm\": "), std::string("{\"vcp_mm\": 1e400}"),
+  for (const std::string& body : {std::string("{\"vcp_mm\": "), std::string("{\"vcp_mm\": 1e400}"),
                                  std::string("{\"vcp_mm\": 1e9}"), std::string("{\"vcp\": 1}"),
                                  std::string("{\"placement\": {\"scale\": -1}}"), std::string("[]"),
                                  std::string("{\"display\": \"../../etc/passwd\"}"),
