@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/parallel.h"
@@ -219,10 +220,23 @@ void drawPlanesAndHits(Canvas& cv, const PreviewInput& in, int view) {
     cv.line({ph(c - 0.5 * eiPitch), v.py(0.0)}, {ph(c + 0.5 * eiPitch), v.py(0.0)}, {kCross, 6.0});
   }
   const double r = std::clamp(0.25 * eiPitch / v.mmPerPx, 1.2, 3.0);
+  // Thousands of hits share a few hundred quarter-pixel positions in each view: one disc per
+  // position and colour, as opaque as the n stacked discs it stands for (1 - 0.2^n), draws the
+  // same picture in a fraction of the time.
+  auto quarterPx = [](double a) { return uint64_t(std::lround(4.0 * std::clamp(a, -1e6, 1e6))) & 0xFFFFFF; };
+  std::unordered_map<uint64_t, size_t> slot;  // position and colour -> index in `marks`
+  std::vector<std::pair<size_t, int>> marks;  // first hit there, number of hits there
   for (size_t i = 0; i < h.kind.size(); ++i) {
     if (!h.kind[i]) continue;
+    const uint64_t key = (uint64_t(h.kind[i]) << 48) | (quarterPx(ph(view == 0 ? h.hit[i].x : h.hit[i].y)) << 24) |
+                         quarterPx(v.py(h.hit[i].z));
+    const auto [it, added] = slot.try_emplace(key, marks.size());
+    if (added) marks.push_back({i, 0});
+    ++marks[it->second].second;
+  }
+  for (const auto& [i, n] : marks) {
     const Vec3& c = h.kind[i] == 1 ? kReal : h.kind[i] == 2 ? kVirtual : kOnPlane;
-    cv.disc({ph(view == 0 ? h.hit[i].x : h.hit[i].y), v.py(h.hit[i].z)}, r, c, 0.8);
+    cv.disc({ph(view == 0 ? h.hit[i].x : h.hit[i].y), v.py(h.hit[i].z)}, r, c, 1.0 - std::pow(0.2, n));
   }
   const double lx = std::floor(ph(a0)) + 6;
   cv.text(view == 0 ? "Top view x-z (x right, z up = toward the viewer)" : "Side view y-z (y right, z up)",
