@@ -32,25 +32,13 @@ struct CentralHits {
 
 // The central ray of every lenslet (from the EI centre on the panel through the pinhole),
 // queried in the field; hits within `tol` of z = 0 are on the plane.
-CentralHits traceCentralRays(const EiLayout& L, const Field& field, const OrthoscopicQuery& oq, double tol,
-                             uint64_t seed, PreviewResult& res, const std::function<bool()>& cancelled) {
-  CentralHits h;
-  h.K = L.eiCols, h.R = L.eiRows;
-  const size_t n = size_t(h.K) * size_t(h.R);
-  h.qs.resize(n);
-  std::vector<FieldRay> rays(n);
+// The field's answers to the central rays `rays` (in CentralHits order).
+std::vector<LensletFirstHit> queryCentralRays(const Field& field, const std::vector<FieldRay>& rays, uint64_t seed,
+                                              const std::function<bool()>& cancelled) {
+  const size_t n = rays.size();
   std::vector<SampledWavelengths> lambdas(n);
+  for (size_t i = 0; i < n; ++i) lambdas[i] = SampledWavelengths::sampleVisible(Rng::forSample(seed, i, 0).uniform());
   std::vector<FieldSample> out(n);
-  for (int k = 0; k < h.K; ++k)
-    for (int l = 0; l < h.R; ++l) {
-      const size_t i = h.idx(k, l);
-      Point3d pin(L.pinholeXAt(k, l), L.pinholeYAt(k, l), 0.0);
-      Vec3d d = pin - Point3d(L.eiCentreXAt(k, l), L.eiCentreYAt(k, l), -L.gapMm);
-      d /= std::sqrt(glm::dot(d, d));
-      h.qs[i] = oq.make(pin, d, i, 0);
-      rays[i] = h.qs[i].ray;
-      lambdas[i] = SampledWavelengths::sampleVisible(Rng::forSample(seed, i, 0).uniform());
-    }
   const bool spectral = field.encoding() == FieldEncoding::Spectral;
   parallelForRange(int64_t(n), [&](int64_t a, int64_t b) {
     if (cancelled && cancelled()) return;  // the caller throws after the loop
@@ -60,6 +48,35 @@ CentralHits traceCentralRays(const EiLayout& L, const Field& field, const Orthos
                          : std::span<const SampledWavelengths>(),
                 std::span(out).subspan(size_t(a), m), seed);
   }, nullptr, 256);
+  std::vector<LensletFirstHit> hits(n);
+  for (size_t i = 0; i < n; ++i) hits[i] = {out[i].depth, out[i].opacity};
+  return hits;
+}
+
+CentralHits traceCentralRays(const EiLayout& L, const Field& field, const OrthoscopicQuery& oq, double tol,
+                             const PreviewSettings& s, PreviewResult& res) {
+  CentralHits h;
+  h.K = L.eiCols, h.R = L.eiRows;
+  const size_t n = size_t(h.K) * size_t(h.R);
+  h.qs.resize(n);
+  std::vector<FieldRay> rays(n);
+  for (int k = 0; k < h.K; ++k)
+    for (int l = 0; l < h.R; ++l) {
+      const size_t i = h.idx(k, l);
+      Point3d pin(L.pinholeXAt(k, l), L.pinholeYAt(k, l), 0.0);
+      Vec3d d = pin - Point3d(L.eiCentreXAt(k, l), L.eiCentreYAt(k, l), -L.gapMm);
+      d /= std::sqrt(glm::dot(d, d));
+      h.qs[i] = oq.make(pin, d, i, 0);
+      rays[i] = h.qs[i].ray;
+    }
+  std::vector<LensletFirstHit> out;
+  if (s.knownHits.size() == n) {  // given in level-0 order, l * K + k
+    out.resize(n);
+    for (int k = 0; k < h.K; ++k)
+      for (int l = 0; l < h.R; ++l) out[h.idx(k, l)] = s.knownHits[size_t(l) * size_t(h.K) + size_t(k)];
+  } else {
+    out = queryCentralRays(field, rays, s.seed, s.cancelled);
+  }
 
   res.lenslets = int(n);
   h.hit.resize(n);
@@ -275,7 +292,7 @@ PreviewResult renderPlacementPreview(const EiLayout& L, const Field& field, cons
     if (s.cancelled && s.cancelled()) throw PreviewCancelled{};
   };
   PreviewResult res;
-  CentralHits h = traceCentralRays(L, field, oq, tol, s.seed, res, s.cancelled);
+  CentralHits h = traceCentralRays(L, field, oq, tol, s, res);
   stopIfCancelled();
   markCrossings(h, tol, res);
 

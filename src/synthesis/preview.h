@@ -13,6 +13,7 @@
 // Cairo and Pango (src/draw).
 #include <cstdint>
 #include <functional>
+#include <span>
 
 #include "core/image.h"
 #include "core/transform.h"
@@ -24,9 +25,18 @@ namespace inim {
 // Thrown by a preview whose `cancelled` answered true (a newer placement superseded it).
 struct PreviewCancelled {};
 
+// Where one lenslet's central query ray first met the field (FieldSample's depth and opacity).
+struct LensletFirstHit {
+  float depth = kInfinity;
+  float opacity = 0.0f;
+};
+
 struct PreviewSettings {
   int width = 1800;  // image width, px (the height follows the scene's depth extent)
   uint64_t seed = 1;
+  // The central rays' answers when the caller has them already (the placement page's level-0
+  // preview asks the same rays), lenslet (k, l) at l * eiCols + k; empty: the field is queried.
+  std::span<const LensletFirstHit> knownHits;
   // Asked between the drawing's stages (the live placement page drops superseded work); none: never.
   std::function<bool()> cancelled;
 };
