@@ -54,6 +54,12 @@ class Field {
   // (seed, ray.id, ray.sample) only, so any batch split gives the same answers.
   virtual void query(std::span<const FieldRay> rays, std::span<const SampledWavelengths> lambda,
                      std::span<FieldSample> out, uint64_t seed) const = 0;
+  // The same answers, approximated where the field has a cost-for-accuracy knob, for previews
+  // that must keep up with the user (the placement page's level 0); by default the full query.
+  virtual void queryPreview(std::span<const FieldRay> rays, std::span<const SampledWavelengths> lambda,
+                            std::span<FieldSample> out, uint64_t seed) const {
+    query(rays, lambda, out, seed);
+  }
   // Axis-aligned bounds of the content, in the field frame (for placement and previews);
   // lo > hi when unknown (colours answered by an external renderer).
   virtual void bounds(Point3& lo, Point3& hi) const = 0;

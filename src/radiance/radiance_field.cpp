@@ -12,7 +12,7 @@
 namespace inim {
 
 RadianceField::RadianceField(VoxelGrid grid, const MarchSettings& settings)
-    : grid_(std::move(grid)), renderer_(grid_, settings) {}
+    : grid_(std::move(grid)), renderer_(grid_, settings), previewRenderer_(grid_, kPreviewMarch) {}
 
 std::unique_ptr<RadianceField> RadianceField::load(const std::string& path) {
   return std::make_unique<RadianceField>(loadVoxelGrid(path));
@@ -20,6 +20,16 @@ std::unique_ptr<RadianceField> RadianceField::load(const std::string& path) {
 
 void RadianceField::query(std::span<const FieldRay> rays, std::span<const SampledWavelengths>,
                           std::span<FieldSample> out, uint64_t) const {
+  queryWith(renderer_, rays, out);
+}
+
+void RadianceField::queryPreview(std::span<const FieldRay> rays, std::span<const SampledWavelengths>,
+                                 std::span<FieldSample> out, uint64_t) const {
+  queryWith(previewRenderer_, rays, out);
+}
+
+void RadianceField::queryWith(const VolumeRenderer& renderer, std::span<const FieldRay> rays,
+                              std::span<FieldSample> out) const {
   if (out.size() < rays.size()) throw std::invalid_argument("RadianceField: output too small");
   tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 256),
                     [&](const tbb::blocked_range<size_t>& r) {
@@ -30,7 +40,7 @@ void RadianceField::query(std::span<const FieldRay> rays, std::span<const Sample
                         if (!(tNear <= tFar)) {
                           res = backgroundResult(grid_);
                         } else {
-                          res = renderer_.render(RenderRay{fr.o, fr.d, tNear, tFar});
+                          res = renderer.render(RenderRay{fr.o, fr.d, tNear, tFar});
                         }
                         FieldSample& s = out[i];
                         s.rgb = Vec3(srgbDecode(res.rgb.x), srgbDecode(res.rgb.y),

@@ -2,6 +2,10 @@
 // with the sRGB EOTF; empty intervals and misses return the (linear) background.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
 #include "core/rng.h"
 #include "radiance/radiance_field.h"
 #include "spectral/color.h"
@@ -79,4 +83,43 @@ TEST(RadianceField, EmptyIntervalsAndMissesSeeTheBackground) {
     EXPECT_EQ(s.opacity, 0.0f);
     EXPECT_EQ(s.depth, kInfinity);
   }
+}
+
+// The preview query (one-cell steps, rays ended at 1 % transmittance) against the full query on
+// a ball with a hard edge (density -20 -> 8 within one cell), the worst case for the step: colour
+// and opacity within 0.07 on any ray (edge rays, measured 0.053), 0.003 on average (measured
+// 0.0005), and the depth of opaque hits within one cell.
+TEST(RadianceField, PreviewQueryIsCloseToTheFullQuery) {
+  RadianceField field(blobGrid(Vec3(1.0f)));
+  const float cell = field.grid().minCellSize();
+  std::vector<FieldRay> rays;
+  Rng rng(5, 0);
+  for (int i = 0; i < 400; ++i) {
+    FieldRay r;
+    r.o = Point3(1.2f * rng.uniform() - 0.6f, 1.2f * rng.uniform() - 0.6f, 4.0f);
+    r.d = glm::normalize(Vec3(0.3f * (rng.uniform() - 0.5f), 0.3f * (rng.uniform() - 0.5f), -1.0f));
+    r.id = uint64_t(i);
+    rays.push_back(r);
+  }
+  std::vector<FieldSample> full(rays.size()), preview(rays.size());
+  field.query(rays, {}, full, 1);
+  field.queryPreview(rays, {}, preview, 1);
+  int hits = 0;
+  double sum = 0.0, worst = 0.0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    for (int c = 0; c < 4; ++c) {
+      const double d = std::abs(c < 3 ? preview[i].rgb[c] - full[i].rgb[c] : preview[i].opacity - full[i].opacity);
+      sum += d, worst = std::max(worst, d);
+    }
+    if (full[i].opacity > 0.99f) {
+      ++hits;
+      EXPECT_NEAR(preview[i].depth, full[i].depth, cell) << i;
+    }
+  }
+  const double mean = sum / (4.0 * double(rays.size()));
+  EXPECT_GT(hits, 100);
+  EXPECT_LT(worst, 0.07);
+  EXPECT_LT(mean, 0.003);
+  EXPECT_GT(worst, 0.0);  // a different (cheaper) estimate, not the same call
+  std::printf("preview vs full query: worst %.4f, mean %.5f over %zu rays\n", worst, mean, rays.size());
 }
