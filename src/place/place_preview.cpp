@@ -44,7 +44,7 @@ Vec3d centralDirection(const EiLayout& L, int k, int l) {
 
 // Levels 0 and 1: n x n queries per lenslet, parallel to its central ray, over its cell.
 PreviewRays lensletRays(const EiLayout& L, const OrthoscopicQuery& oq, int n, int spp) {
-  PreviewRays pr{L.eiCols * n, L.eiRows * n, spp, {}};
+  PreviewRays pr{L.eiCols * n, L.eiRows * n, spp, {}, {}};
   pr.queries.resize(size_t(pr.width) * pr.height * spp);
   const double px = L.lensPitchMm / n, py = L.lensRowPitchMm() / n;
   for (int l = 0; l < L.eiRows; ++l)
@@ -86,7 +86,7 @@ CameraFrame cameraFrame(const EiLayout& L, const PreviewRequest& r) {
 }
 
 PreviewRays cameraRays(const CameraFrame& c, const Transform& toField, int spp, uint64_t seed) {
-  PreviewRays pr{c.width, c.height, spp, {}};
+  PreviewRays pr{c.width, c.height, spp, {}, {}};
   pr.queries.resize(size_t(c.width) * c.height * spp);
   const Point3d eye(0.0, 0.0, c.D);
   for (int y = 0; y < c.height; ++y)
@@ -115,7 +115,7 @@ PreviewRays cameraRays(const CameraFrame& c, const Transform& toField, int spp, 
 }
 
 // The field's answers to every query, in chunks; a cancelled render stops at its next chunk.
-std::vector<FieldSample> queryField(const Field& field, const PreviewRays& pr, uint64_t seed,
+std::vector<FieldSample> queryField(const Field& field, const PreviewRays& pr, uint64_t seed, bool preview,
                                     const std::function<bool()>& cancelled) {
   const size_t n = pr.queries.size();
   const bool spectral = field.encoding() == FieldEncoding::Spectral;
@@ -129,10 +129,11 @@ std::vector<FieldSample> queryField(const Field& field, const PreviewRays& pr, u
       return;
     }
     const size_t m = size_t(b - a);
-    field.query(std::span<const FieldRay>(rays).subspan(size_t(a), m),
-                spectral ? std::span<const SampledWavelengths>(pr.lambdas).subspan(size_t(a), m)
-                         : std::span<const SampledWavelengths>(),
-                std::span(out).subspan(size_t(a), m), seed);
+    const auto r = std::span<const FieldRay>(rays).subspan(size_t(a), m);
+    const auto l = spectral ? std::span<const SampledWavelengths>(pr.lambdas).subspan(size_t(a), m)
+                            : std::span<const SampledWavelengths>();
+    const auto o = std::span(out).subspan(size_t(a), m);
+    preview ? field.queryPreview(r, l, o, seed) : field.query(r, l, o, seed);
   }, nullptr, 512);
   if (stop || (cancelled && cancelled())) throw PreviewCancelled{};
   return out;
@@ -244,12 +245,20 @@ PreviewFrame renderPlacePreview(const EiLayout& L, const Field& field, const Tra
   } else {
     const OrthoscopicQuery oq(fieldToDisplay, vcpMm);
     pr = lensletRays(L, oq, r.level == 0 ? 1 : std::clamp(r.raysPerSide, 1, 16),
-                     spectral ? std::max(1, r.wavelengthSamples) : 1);
+                     spectral && r.level != 0 ? std::max(1, r.wavelengthSamples) : 1);
   }
   if (spectral) sampleWavelengths(pr, r.seed);
-  const std::vector<FieldSample> out = queryField(field, pr, r.seed, cancelled);
+  // Level 0 must keep up with a drag: the field's cheaper answers (levels 1 and 2 refine).
+  const std::vector<FieldSample> out = queryField(field, pr, r.seed, r.level == 0, cancelled);
   const PixelAnswers pa = resolvePixels(field, pr, out);
   PreviewFrame f;
+  if (r.level == 0) {
+    f.lensletHits.resize(size_t(pr.width) * pr.height);
+    for (size_t p = 0; p < f.lensletHits.size(); ++p) {
+      const FieldSample& s = out[p * size_t(pr.spp)];
+      f.lensletHits[p] = {s.depth, s.opacity};
+    }
+  }
   f.exposure = r.exposure ? *r.exposure : autoExposure(pa);
   f.image = Image(pr.width, pr.height, {"R", "G", "B"});
   for (int y = 0; y < pr.height; ++y)

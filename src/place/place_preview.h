@@ -8,7 +8,8 @@
 // Every pixel is the first hit's colour, painted pure red (255, 0, 0) where the hit lies within
 // the tolerance of the MLA plane (no other pixel is ever that exact red); at levels 0 and 1 the
 // parts behind the MLA (virtual images) are shown cooler and darker than those in front; no hit
-// is dark grey.
+// is dark grey. Level 0 keeps up with a drag: it asks Field::queryPreview and, for spectral
+// fields, one wavelength sample per ray (levels 1 and 2 refine with the full query).
 //
 // Rendering runs in batches of rows; `cancelled` is asked between batches and a true answer
 // ends the render with PreviewCancelled, so a newer placement interrupts an older one at once.
@@ -34,6 +35,9 @@ struct PreviewFrame {
   Image image;  // R, G, B, display-encoded (sRGB) in [0, 1]
   PreviewCounts counts;
   double exposure = 1.0;  // the linear factor used (auto on the first frame, then kept)
+  // Level 0: what each lenslet's central ray met (its first sample), lenslet (k, l) at
+  // l * eiCols + k, for the diagram of the same placement (PreviewSettings::knownHits).
+  std::vector<LensletFirstHit> lensletHits;
 };
 
 struct PreviewRequest {
@@ -41,7 +45,7 @@ struct PreviewRequest {
   int raysPerSide = 4;           // level 1: n x n rays per lenslet
   int cameraWidth = 480;         // level 2: image width (the height follows the display's aspect)
   int cameraSpp = 4;             // level 2: samples per pixel
-  int wavelengthSamples = 2;     // spectral fields: samples per ray at levels 0 and 1
+  int wavelengthSamples = 2;     // spectral fields: samples per ray at level 1 (level 0: one)
   double viewingDistanceMm = 350.0;
   double onPlaneToleranceMm = 0.5;
   std::optional<double> exposure;  // absent: auto (99th percentile of the hits -> 0.9)

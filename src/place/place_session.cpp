@@ -49,11 +49,14 @@ Json statsJson(std::deque<double> v) {
 
 }  // namespace
 
-PlaceSession::PlaceSession(const PlaceOptions& o)
+PlaceSession::PlaceSession(const PlaceOptions& o) : PlaceSession(o, LoadedField{}) {}
+
+PlaceSession::PlaceSession(const PlaceOptions& o, LoadedField given)
     : seed_(o.seed), quiet_(o.quietMs), latencies_(kImageKinds) {
   const RunFile run = o.runPath.empty() ? RunFile{} : loadRunFile(o.runPath);
   fieldPath_ = absolutePath(!o.fieldPath.empty() ? o.fieldPath : run.scene.value_or(defaultScenePath()));
-  field_ = loadField(fieldPath_, o.fieldPath.empty() && run.scene ? "scene (" + o.runPath + ")" : "field");
+  field_ = given.field ? std::move(given)
+                       : loadField(fieldPath_, o.fieldPath.empty() && run.scene ? "scene (" + o.runPath + ")" : "field");
   outDir_ = absolutePath(o.outDir);
 
   PlaceState s;
@@ -121,15 +124,21 @@ ImageAnswer PlaceSession::image(ImageKind kind, uint64_t revision, std::chrono::
   const auto deadline = Clock::now() + timeout;
   ImageAnswer a;
   a.revision = revision;
+  auto answer = [&a](const Rendered& r) {
+    a.status = r.error.empty() ? ImageAnswer::Status::Ready : ImageAnswer::Status::Failed;
+    a.png = r.png, a.counts = r.counts, a.serverMs = r.serverMs, a.error = r.error;
+    return a;
+  };
   while (true) {
-    if (revision < current_.state.revision) return a.status = ImageAnswer::Status::Stale, a;
-    if (revision > current_.state.revision) return a.status = ImageAnswer::Status::Future, a;
-    auto it = results_.find(int(kind));
-    if (it != results_.end()) {
-      a.status = it->second.error.empty() ? ImageAnswer::Status::Ready : ImageAnswer::Status::Failed;
-      a.png = it->second.png, a.counts = it->second.counts, a.serverMs = it->second.serverMs;
-      a.error = it->second.error;
-      return a;
+    if (revision < current_.state.revision) {
+      // An older revision's level 0 is served when it was finished, waited for when under way.
+      if (kind != ImageKind::Level0) return a.status = ImageAnswer::Status::Stale, a;
+      if (lastLevel0_ && lastLevel0_->first == revision) return answer(lastLevel0_->second);
+      if (level0InFlight_ != revision) return a.status = ImageAnswer::Status::Stale, a;
+    } else if (revision > current_.state.revision) {
+      return a.status = ImageAnswer::Status::Future, a;
+    } else if (auto it = results_.find(int(kind)); it != results_.end()) {
+      return answer(it->second);
     }
     if (changed_.wait_until(lock, deadline) == std::cv_status::timeout)
       return a.status = ImageAnswer::Status::Timeout, a;
@@ -157,6 +166,7 @@ void PlaceSession::workerLoop() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (auto kind = nextWork(lock)) {
     const Snapshot snap = current_;
+    if (*kind == ImageKind::Level0) level0InFlight_ = snap.state.revision;
     lock.unlock();
     Rendered r;
     bool cancelled = false;
@@ -170,12 +180,18 @@ void PlaceSession::workerLoop() {
       r.error = e.what();
     }
     lock.lock();
-    if (cancelled || stop_ || snap.state.revision != current_.state.revision) continue;
+    if (*kind == ImageKind::Level0) level0InFlight_.reset();
+    const bool current = snap.state.revision == current_.state.revision;
+    if (cancelled || stop_ || (!current && *kind != ImageKind::Level0)) {
+      changed_.notify_all();  // a request waiting for this level 0 learns it is stale
+      continue;
+    }
     r.serverMs = std::chrono::duration<double, std::milli>(Clock::now() - snap.changedAt).count();
     auto& lat = latencies_[size_t(*kind)];
     lat.push_back(r.serverMs);
     if (lat.size() > 1000) lat.pop_front();
-    results_[int(*kind)] = std::move(r);
+    if (*kind == ImageKind::Level0) lastLevel0_ = {snap.state.revision, r};
+    if (current) results_[int(*kind)] = std::move(r);
     changed_.notify_all();
   }
 }
@@ -184,9 +200,9 @@ PlaceSession::Rendered PlaceSession::render(ImageKind kind, const Snapshot& snap
   const Transform toDisplay = snap.state.placement.toDisplay();
   const EiLayout& L = snap.display->layout;
   const uint64_t rev = snap.state.revision;
-  auto cancelled = [this, rev] {
+  auto cancelled = [this, rev, kind] {
     std::lock_guard<std::mutex> lock(mutex_);
-    return stop_ || current_.state.revision != rev;
+    return stop_ || (kind != ImageKind::Level0 && current_.state.revision != rev);
   };
   Rendered r;
   if (kind == ImageKind::Diagram) {
@@ -194,6 +210,13 @@ PlaceSession::Rendered PlaceSession::render(ImageKind kind, const Snapshot& snap
     ps.width = 900;
     ps.seed = seed_;
     ps.cancelled = cancelled;
+    std::shared_ptr<const std::vector<LensletFirstHit>> known;
+    {  // level 0 of this revision asked the same rays: the diagram only draws
+      std::lock_guard<std::mutex> lock(mutex_);
+      auto it = results_.find(int(ImageKind::Level0));
+      if (current_.state.revision == rev && it != results_.end() && it->second.lensletHits) known = it->second.lensletHits;
+    }
+    if (known) ps.knownHits = *known;
     const PreviewResult p = renderPlacementPreview(L, *field_.field, toDisplay, snap.state.vcpMm, ps);
     r.png = encodePng(p.image);
     r.counts = {{"real", p.real}, {"virtual", p.virtualHits}, {"on_plane", p.onPlane}, {"missed", p.missed}};
@@ -215,6 +238,7 @@ PlaceSession::Rendered PlaceSession::render(ImageKind kind, const Snapshot& snap
   }
   r.png = encodePng(f.image);
   r.counts = countsJson(f.counts);
+  if (kind == ImageKind::Level0) r.lensletHits = std::make_shared<const std::vector<LensletFirstHit>>(f.lensletHits);
   return r;
 }
 

@@ -29,6 +29,7 @@
 #include "fields/field_factory.h"
 #include "place/place_jobs.h"
 #include "place/place_state.h"
+#include "synthesis/preview.h"
 
 namespace inim {
 
@@ -61,6 +62,8 @@ struct PlaceDisplay {
 class PlaceSession {
  public:
   explicit PlaceSession(const PlaceOptions& options);
+  // With a field already loaded (options.fieldPath then only names it).
+  PlaceSession(const PlaceOptions& options, LoadedField field);
   ~PlaceSession();
   PlaceSession(const PlaceSession&) = delete;
   PlaceSession& operator=(const PlaceSession&) = delete;
@@ -87,6 +90,7 @@ class PlaceSession {
   struct Rendered {
     std::string png;
     Json counts;
+    std::shared_ptr<const std::vector<LensletFirstHit>> lensletHits;  // level 0, for the diagram
     double serverMs = 0.0;
     std::string error;
   };
@@ -107,6 +111,10 @@ class PlaceSession {
   std::condition_variable changed_;  // the state, a result, or stop
   Snapshot current_;
   std::map<int, Rendered> results_;   // of current_'s revision, by ImageKind
+  // Level 0 is short and the page needs frames while the user drags: once started it is
+  // finished and kept for its revision, even when the state has moved on meanwhile.
+  std::optional<uint64_t> level0InFlight_;
+  std::optional<std::pair<uint64_t, Rendered>> lastLevel0_;  // the newest finished, by revision
   std::optional<double> exposure_;    // fixed by the first level-0 frame, so brightness holds still
   std::vector<std::deque<double>> latencies_;
   bool stop_ = false;

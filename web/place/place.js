@@ -86,16 +86,22 @@
     };
   }
 
-  // Decodes off screen, then swaps the element's source (no blank frame), freeing the old blob.
-  async function showBlob(img, blob) {
+  // Decodes off screen, then swaps the element's source (no blank frame), freeing the old blob;
+  // false, showing nothing, when `wanted` says after the decode that a newer image won.
+  async function showBlob(img, blob, wanted = () => true) {
     const url = URL.createObjectURL(blob);
     const probe = new Image();
     probe.src = url;
     try { await probe.decode(); } catch (e) { URL.revokeObjectURL(url); throw new Error('undecodable image'); }
+    if (!wanted()) {
+      URL.revokeObjectURL(url);
+      return false;
+    }
     const old = img.dataset.url;
     img.src = url;
     img.dataset.url = url;
     if (old) URL.revokeObjectURL(old);
+    return true;
   }
 
   // ---------------------------------------------------------------- status line
@@ -313,9 +319,9 @@
 
   // ---------------------------------------------------------------- sending changes
 
-  // One cycle at a time (PUT, then the level-0 image of its revision); changes made meanwhile
-  // merge into one pending patch, so dragging never queues stale states and the server's
-  // renderer is not interrupted before it can show anything.
+  // One PUT at a time; changes made meanwhile merge into one pending
+  // patch, so dragging never queues stale states. Each revision's level 0 is fetched beside
+  // (putAndShow), and painted unless a newer one was painted first.
   const sync = {pending: null, busy: false, flushQueued: false, revision: -1};
   const inputs = [];                 // [{seq, t0}] not yet painted
   const revisionInputs = new Map();  // revision -> last input seq it includes
@@ -335,10 +341,11 @@
     scheduleFlush();
   }
 
+  // Right after the input's handler (no frame's wait): a PUT under way merges what follows.
   function scheduleFlush() {
     if (sync.flushQueued) return;
     sync.flushQueued = true;
-    requestAnimationFrame(flush);
+    queueMicrotask(flush);
   }
 
   async function flush() {
@@ -356,14 +363,9 @@
     } finally {
       sync.busy = false;
       publishSync();
-      if (sync.pending) flushNow();  // changes made meanwhile are merged already: no frame to wait for
+      if (sync.pending) scheduleFlush();  // the changes made meanwhile, merged
       else onIdle();
     }
-  }
-
-  function flushNow() {
-    sync.flushQueued = true;
-    Promise.resolve().then(flush);
   }
 
   async function putAndShow(patch, upTo) {
@@ -379,7 +381,10 @@
     sync.revision = Number(r.data.revision);
     revisionInputs.set(sync.revision, upTo);
     if ($('status').classList.contains('error')) setStatus('ok', 'ok');
-    await showLevel0(sync.revision);
+    // Not awaited: the next change goes out while this one renders. The server finishes a level 0
+    // it has started and serves it, so dragging shows frames and each input waits for at most
+    // the render under way plus its own.
+    showLevel0(sync.revision).catch(showError);
   }
 
   // Sends the keys of a refused patch one at a time; the first refusal's text (null: none).
@@ -436,8 +441,8 @@
 
   async function showLevel0(rev) {
     const a = await fetchImage(`/api/preview?level=0&revision=${rev}`);
-    if (!a || a.revision < shown.level0) return;
-    await showBlob($('preview0'), a.blob);
+    if (!a || a.revision <= shown.level0) return;
+    if (!(await showBlob($('preview0'), a.blob, () => a.revision > shown.level0))) return;
     shown.level0 = a.revision;
     if (shown.level1 !== a.revision) $('preview1').hidden = true;
     $('preview2').classList.toggle('stale', shown.level2 !== a.revision);

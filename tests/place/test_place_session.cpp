@@ -1,0 +1,114 @@
+// The placement session's worker (src/place/place_session.h) with a field whose answers wait
+// behind a gate, so the order of events is fixed: a level 0 under way when the state moves on
+// is finished and served for its revision; a revision whose level 0 never started is stale at
+// once, and so is every other image of an older revision.
+#include <gtest/gtest.h>
+
+#include <condition_variable>
+#include <filesystem>
+#include <mutex>
+
+#include "core/output_file.h"
+#include "fields/field_factory.h"
+#include "place/place_session.h"
+
+using namespace inim;
+using namespace std::chrono_literals;
+
+namespace {
+
+// The ramp scene, each query waiting while the gate is shut; counts the queries begun.
+class GatedField : public Field {
+ public:
+  explicit GatedField(std::unique_ptr<Field> inner) : inner_(std::move(inner)) {}
+  FieldEncoding encoding() const override { return inner_->encoding(); }
+  std::string colorSpace() const override { return inner_->colorSpace(); }
+  void bounds(Point3& lo, Point3& hi) const override { inner_->bounds(lo, hi); }
+  void query(std::span<const FieldRay> rays, std::span<const SampledWavelengths> lambda, std::span<FieldSample> out,
+             uint64_t seed) const override {
+    std::unique_lock<std::mutex> lock(m_);
+    ++begun_;
+    cv_.notify_all();
+    cv_.wait(lock, [this] { return open_; });
+    lock.unlock();
+    inner_->query(rays, lambda, out, seed);
+  }
+  void setOpen(bool open) {
+    std::lock_guard<std::mutex> lock(m_);
+    open_ = open;
+    cv_.notify_all();
+  }
+  // Waits until more than `n` queries have begun; the number begun.
+  int waitBegunOver(int n) {
+    std::unique_lock<std::mutex> lock(m_);
+    cv_.wait_for(lock, 30s, [&] { return begun_ > n; });
+    return begun_;
+  }
+
+ private:
+  std::unique_ptr<Field> inner_;
+  mutable std::mutex m_;
+  mutable std::condition_variable cv_;
+  mutable int begun_ = 0;
+  bool open_ = false;
+};
+
+struct GatedSession {
+  GatedField* gate = nullptr;
+  std::unique_ptr<PlaceSession> session;
+  GatedSession() {
+    LoadedField f = loadField(dataPath("scenes/test/depth-ramp.json"), "scene");
+    auto gated = std::make_unique<GatedField>(std::move(f.field));
+    gate = gated.get();
+    f.field = std::move(gated);
+    f.analyticScene = nullptr;
+    PlaceOptions o;
+    o.outDir = (std::filesystem::temp_directory_path() / "inim-test-place-session").string();
+    o.quietMs = 600000;  // no level 1 or 2 during the test
+    session = std::make_unique<PlaceSession>(o, std::move(f));
+  }
+  ~GatedSession() { gate->setOpen(true); }  // the worker may be waiting at the gate
+  uint64_t move(double tz) {
+    return session->putState(R"({"placement": {"translate_mm": [0, 0, )" + std::to_string(tz) + "]}}")["revision"];
+  }
+  ImageAnswer::Status status(ImageKind k, uint64_t rev) { return session->image(k, rev, 20s).status; }
+};
+
+using S = ImageAnswer::Status;
+
+}  // namespace
+
+TEST(PlaceSession, ALevel0UnderWayIsFinishedAndServedAfterTheStateMovesOn) {
+  GatedSession g;
+  const int begun = g.gate->waitBegunOver(0);  // level 0 of revision 0 is waiting at the gate
+  const uint64_t r1 = g.move(2.0);
+  g.gate->setOpen(true);
+  const ImageAnswer a0 = g.session->image(ImageKind::Level0, 0, 20s);
+  EXPECT_EQ(a0.status, S::Ready) << a0.error;
+  EXPECT_EQ(a0.revision, 0u);
+  EXPECT_EQ(a0.png.substr(1, 3), "PNG");
+  EXPECT_EQ(g.status(ImageKind::Level0, r1), S::Ready);
+  EXPECT_GT(g.gate->waitBegunOver(begun), begun);
+  // Everything else of revision 0 is stale, as is its level 0 once a newer one is kept.
+  EXPECT_EQ(g.status(ImageKind::Diagram, 0), S::Stale);
+  EXPECT_EQ(g.status(ImageKind::Level1, 0), S::Stale);
+  EXPECT_EQ(g.status(ImageKind::Level0, 0), S::Stale);
+}
+
+TEST(PlaceSession, ARevisionWhoseLevel0NeverStartedIsStaleAtOnce) {
+  GatedSession g;
+  g.gate->setOpen(true);
+  ASSERT_EQ(g.status(ImageKind::Level0, 0), S::Ready);
+  ASSERT_EQ(g.status(ImageKind::Diagram, 0), S::Ready);
+  g.gate->setOpen(false);
+  const int begun = g.gate->waitBegunOver(-1);
+  const uint64_t r1 = g.move(1.0);
+  g.gate->waitBegunOver(begun);  // level 0 of r1 is at the gate
+  const uint64_t r2 = g.move(2.0), r3 = g.move(3.0);
+  EXPECT_EQ(g.status(ImageKind::Level0, r2), S::Stale);  // superseded before it began
+  g.gate->setOpen(true);
+  EXPECT_EQ(g.status(ImageKind::Level0, r1), S::Ready);
+  EXPECT_EQ(g.status(ImageKind::Level0, r3), S::Ready);
+  EXPECT_EQ(g.status(ImageKind::Diagram, r3), S::Ready);
+  EXPECT_EQ(g.status(ImageKind::Diagram, r1), S::Stale);
+}
