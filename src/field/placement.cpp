@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/json_config.h"
+#include "field/field.h"
 
 namespace fs = std::filesystem;
 
@@ -161,6 +162,20 @@ RunFile loadRunFile(const std::string& path) {
   }
   o.rejectUnknown();
   return r;
+}
+
+bool boundsInFrame(const Field& field, const Transform& fieldToFrame, Point3d& lo, Point3d& hi) {
+  Point3 flo, fhi;
+  field.bounds(flo, fhi);
+  if (!(flo.x <= fhi.x && flo.y <= fhi.y && flo.z <= fhi.z)) return false;
+  lo = Point3d(std::numeric_limits<double>::infinity());
+  hi = -lo;
+  for (int c = 0; c < 8; ++c) {
+    const Point3d p = fieldToFrame.point(Point3d((c & 1) ? fhi.x : flo.x, (c & 2) ? fhi.y : flo.y, (c & 4) ? fhi.z : flo.z));
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  return true;
 }
 
 }  // namespace inim

@@ -58,6 +58,11 @@ struct PlacementOverride {
 // InputError naming the setting that made it).
 Placement resolvePlacement(const std::optional<Placement>& base, const PlacementOverride& given);
 
+class Field;
+// The field's bounds carried into another frame (the display's): the box around their eight
+// corners. False, leaving lo and hi as they were, when the field's bounds are unknown.
+bool boundsInFrame(const Field& field, const Transform& fieldToFrame, Point3d& lo, Point3d& hi);
+
 // Settings a run file may carry (absent = not given; the command line or defaults decide).
 struct RunFile {
   std::string file;

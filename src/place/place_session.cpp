@@ -259,17 +259,9 @@ Json PlaceSession::info() const {
   const PlaceDisplay& pd = *current_.display;
   const EiLayout& L = pd.layout;
   Json f = {{"path", fieldPath_}, {"kind", fieldKindName(field_.kind)}};
-  Point3 lo, hi;
-  field_.field->bounds(lo, hi);
-  if (lo.x <= hi.x) {
-    const Transform t = current_.state.placement.toDisplay();
-    Point3d blo(1e300), bhi(-1e300);
-    for (int c = 0; c < 8; ++c) {
-      const Point3d p = t.point(Point3d((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z));
-      blo = glm::min(blo, p), bhi = glm::max(bhi, p);
-    }
+  Point3d blo, bhi;
+  if (boundsInFrame(*field_.field, current_.state.placement.toDisplay(), blo, bhi))
     f["bounds_mm"] = {{blo.x, blo.y, blo.z}, {bhi.x, bhi.y, bhi.z}};
-  }
   const AreaMm a = L.activeArea();
   Json displays = Json::array();
   for (const auto& d : displays_) displays.push_back({{"path", d}, {"name", fs::path(d).stem().string()}});

@@ -14,6 +14,7 @@
 #include "field/ray_table.h"
 #include "rays/pinhole_rays.h"
 #include "spectral/cmf_table.h"
+#include "field/placement.h"
 #include "synthesis/orthoscopic.h"
 
 namespace inim {
@@ -48,17 +49,9 @@ void validate(const SynthesisSettings& s, const EiLayout& L) {
 // Where the scene lies in the display frame, from the field's bounds, and whether the VCP
 // clips it.
 void locateScene(const Field& field, const OrthoscopicQuery& oq, double vcpMm, SynthesisStats& st) {
-  Point3 lo, hi;
-  field.bounds(lo, hi);
-  st.sceneBoundsKnown = lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z;
+  Point3d dlo, dhi;
+  st.sceneBoundsKnown = boundsInFrame(field, oq.fieldToDisplay(), dlo, dhi);
   if (!st.sceneBoundsKnown) return;  // colours from elsewhere: nothing to locate
-  Point3d dlo(std::numeric_limits<double>::infinity()), dhi(-std::numeric_limits<double>::infinity());
-  for (int c = 0; c < 8; ++c) {
-    Point3d p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
-    Point3d q = oq.fieldToDisplay().point(p);
-    dlo = glm::min(dlo, q);
-    dhi = glm::max(dhi, q);
-  }
   st.sceneLo = dlo;
   st.sceneHi = dhi;
   st.sceneBehindVcp = dlo.z > vcpMm;

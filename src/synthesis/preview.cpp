@@ -11,6 +11,7 @@
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "draw/canvas.h"
+#include "field/placement.h"
 #include "synthesis/orthoscopic.h"
 
 namespace inim {
@@ -130,15 +131,9 @@ struct ViewBox {
 ViewBox viewBox(const EiLayout& L, const Field& field, const Transform& fieldToDisplay, double vcpMm,
                 const CentralHits& h, int width) {
   ViewBox v;
-  Point3 flo, fhi;
-  field.bounds(flo, fhi);
-  v.blo = Point3d(std::numeric_limits<double>::infinity());
-  v.bhi = Point3d(-std::numeric_limits<double>::infinity());
-  for (int c = 0; c < 8 && flo.x <= fhi.x; ++c) {  // unknown bounds (lo > hi): none drawn
-    Point3d p = fieldToDisplay.point(Point3d((c & 1) ? fhi.x : flo.x, (c & 2) ? fhi.y : flo.y, (c & 4) ? fhi.z : flo.z));
-    v.blo = glm::min(v.blo, p);
-    v.bhi = glm::max(v.bhi, p);
-  }
+  v.blo = Point3d(std::numeric_limits<double>::infinity());  // unknown bounds: none drawn
+  v.bhi = -v.blo;
+  boundsInFrame(field, fieldToDisplay, v.blo, v.bhi);
   const double g = L.gapMm;
   const double halfW = 0.5 * L.eiaW * L.pixelMm, halfH = 0.5 * L.eiaH * L.pixelMm;
   const double lim = 1.5 * std::max({halfW, halfH, std::abs(vcpMm), 10.0});
