@@ -15,6 +15,7 @@ namespace inim {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+using namespace std::chrono_literals;
 
 namespace {
 
@@ -148,8 +149,15 @@ ImageAnswer PlaceSession::image(ImageKind kind, uint64_t revision, std::chrono::
 // The next image to render for the current revision, or none (waiting until there is one).
 std::optional<ImageKind> PlaceSession::nextWork(std::unique_lock<std::mutex>& lock) {
   while (!stop_) {
-    for (ImageKind k : {ImageKind::Level0, ImageKind::Diagram})
-      if (!results_.count(int(k))) return k;
+    if (!results_.count(int(ImageKind::Level0))) return ImageKind::Level0;
+    if (!results_.count(int(ImageKind::Diagram))) {
+      // While changes keep coming the diagram gives way to level 0: it is drawn once the state
+      // has been still for 50 ms, or when the last one drawn is 250 ms old.
+      const auto due = std::min(current_.changedAt + 50ms, lastDiagramAt_ + 250ms);
+      if (Clock::now() >= due) return ImageKind::Diagram;
+      changed_.wait_until(lock, due);
+      continue;
+    }
     const auto still = current_.changedAt + quiet_;
     if (Clock::now() < still) {
       changed_.wait_until(lock, still);
@@ -167,6 +175,7 @@ void PlaceSession::workerLoop() {
   while (auto kind = nextWork(lock)) {
     const Snapshot snap = current_;
     if (*kind == ImageKind::Level0) level0InFlight_ = snap.state.revision;
+    if (*kind == ImageKind::Diagram) lastDiagramAt_ = Clock::now();
     lock.unlock();
     Rendered r;
     bool cancelled = false;

@@ -115,6 +115,7 @@ class PlaceSession {
   // finished and kept for its revision, even when the state has moved on meanwhile.
   std::optional<uint64_t> level0InFlight_;
   std::optional<std::pair<uint64_t, Rendered>> lastLevel0_;  // the newest finished, by revision
+  std::chrono::steady_clock::time_point lastDiagramAt_;       // when the last diagram began
   std::optional<double> exposure_;    // fixed by the first level-0 frame, so brightness holds still
   std::vector<std::deque<double>> latencies_;
   bool stop_ = false;
