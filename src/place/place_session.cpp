@@ -134,10 +134,12 @@ ImageAnswer PlaceSession::image(ImageKind kind, uint64_t revision, std::chrono::
     if (revision < current_.state.revision) {
       // An older revision's level 0 is served when it was finished, waited for when under way.
       if (kind != ImageKind::Level0) return a.status = ImageAnswer::Status::Stale, a;
-      if (lastLevel0_ && lastLevel0_->first == revision) return answer(lastLevel0_->second);
+      if (const Rendered* r = level0Of(revision)) return answer(*r);
       if (level0InFlight_ != revision) return a.status = ImageAnswer::Status::Stale, a;
     } else if (revision > current_.state.revision) {
       return a.status = ImageAnswer::Status::Future, a;
+    } else if (kind == ImageKind::Level0) {
+      if (const Rendered* r = level0Of(revision)) return answer(*r);
     } else if (auto it = results_.find(int(kind)); it != results_.end()) {
       return answer(it->second);
     }
@@ -146,10 +148,14 @@ ImageAnswer PlaceSession::image(ImageKind kind, uint64_t revision, std::chrono::
   }
 }
 
+const PlaceSession::Rendered* PlaceSession::level0Of(uint64_t revision) const {
+  return lastLevel0_ && lastLevel0_->first == revision ? &lastLevel0_->second : nullptr;
+}
+
 // The next image to render for the current revision, or none (waiting until there is one).
 std::optional<ImageKind> PlaceSession::nextWork(std::unique_lock<std::mutex>& lock) {
   while (!stop_) {
-    if (!results_.count(int(ImageKind::Level0))) return ImageKind::Level0;
+    if (!level0Of(current_.state.revision)) return ImageKind::Level0;
     if (!results_.count(int(ImageKind::Diagram))) {
       // While changes keep coming the diagram gives way to level 0: it is drawn once the state
       // has been still for 50 ms, or when the last one drawn is 250 ms old.
@@ -199,8 +205,10 @@ void PlaceSession::workerLoop() {
     auto& lat = latencies_[size_t(*kind)];
     lat.push_back(r.serverMs);
     if (lat.size() > 1000) lat.pop_front();
-    if (*kind == ImageKind::Level0) lastLevel0_ = {snap.state.revision, r};
-    if (current) results_[int(*kind)] = std::move(r);
+    if (*kind == ImageKind::Level0)
+      lastLevel0_ = {snap.state.revision, std::move(r)};
+    else
+      results_[int(*kind)] = std::move(r);
     changed_.notify_all();
   }
 }
@@ -222,8 +230,7 @@ PlaceSession::Rendered PlaceSession::render(ImageKind kind, const Snapshot& snap
     std::shared_ptr<const std::vector<LensletFirstHit>> known;
     {  // level 0 of this revision asked the same rays: the diagram only draws
       std::lock_guard<std::mutex> lock(mutex_);
-      auto it = results_.find(int(ImageKind::Level0));
-      if (current_.state.revision == rev && it != results_.end() && it->second.lensletHits) known = it->second.lensletHits;
+      if (const Rendered* l0 = level0Of(rev)) known = l0->lensletHits;
     }
     if (known) ps.knownHits = *known;
     const PreviewResult p = renderPlacementPreview(L, *field_.field, toDisplay, snap.state.vcpMm, ps);

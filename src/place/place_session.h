@@ -98,6 +98,8 @@ class PlaceSession {
   void workerLoop();
   std::optional<ImageKind> nextWork(std::unique_lock<std::mutex>& lock);
   Rendered render(ImageKind kind, const Snapshot& snap);
+  // The kept level 0 of `revision`, or null (call with mutex_ held).
+  const Rendered* level0Of(uint64_t revision) const;
   std::shared_ptr<const PlaceDisplay> displayFor(const PlaceState& s) const;
 
   LoadedField field_;
@@ -110,7 +112,7 @@ class PlaceSession {
   mutable std::mutex mutex_;
   std::condition_variable changed_;  // the state, a result, or stop
   Snapshot current_;
-  std::map<int, Rendered> results_;   // of current_'s revision, by ImageKind
+  std::map<int, Rendered> results_;   // of current_'s revision, by ImageKind, but level 0
   // Level 0 is short and the page needs frames while the user drags: once started it is
   // finished and kept for its revision, even when the state has moved on meanwhile.
   std::optional<uint64_t> level0InFlight_;

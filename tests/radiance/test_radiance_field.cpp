@@ -28,6 +28,21 @@ VoxelGrid blobGrid(const Vec3& background) {
       }
   return g;
 }
+
+// n rays from z = 4 towards -z, origins uniform over [-half, half]^2, directions tilted by up to
+// spread / 2 in x and y.
+std::vector<FieldRay> raysDownZ(uint64_t seed, int n, float half, float spread) {
+  std::vector<FieldRay> rays;
+  Rng rng(seed, 0);
+  for (int i = 0; i < n; ++i) {
+    FieldRay r;
+    r.o = Point3(half * (2.0f * rng.uniform() - 1.0f), half * (2.0f * rng.uniform() - 1.0f), 4.0f);
+    r.d = glm::normalize(Vec3(spread * (rng.uniform() - 0.5f), spread * (rng.uniform() - 0.5f), -1.0f));
+    r.id = uint64_t(i);
+    rays.push_back(r);
+  }
+  return rays;
+}
 }  // namespace
 
 TEST(RadianceField, QueryMatchesRendererLinearised) {
@@ -41,16 +56,8 @@ TEST(RadianceField, QueryMatchesRendererLinearised) {
   EXPECT_EQ(lo, g.lo);
   EXPECT_EQ(hi, g.hi);
   VolumeRenderer renderer(g);
-  std::vector<FieldRay> rays;
-  Rng rng(3, 0);
-  for (int i = 0; i < 300; ++i) {
-    FieldRay r;
-    r.o = Point3(2.0f * rng.uniform() - 1.0f, 2.0f * rng.uniform() - 1.0f, 4.0f);
-    r.d = glm::normalize(Vec3(0.2f * (rng.uniform() - 0.5f), 0.2f * (rng.uniform() - 0.5f), -1.0f));
-    r.tNear = i % 3 == 0 ? 3.0f : 0.0f;
-    r.id = uint64_t(i);
-    rays.push_back(r);
-  }
+  std::vector<FieldRay> rays = raysDownZ(3, 300, 1.0f, 0.2f);
+  for (size_t i = 0; i < rays.size(); i += 3) rays[i].tNear = 3.0f;
   std::vector<FieldSample> out(rays.size());
   field.query(rays, {}, out, 42);
   int hits = 0;
@@ -92,15 +99,7 @@ TEST(RadianceField, EmptyIntervalsAndMissesSeeTheBackground) {
 TEST(RadianceField, PreviewQueryIsCloseToTheFullQuery) {
   RadianceField field(blobGrid(Vec3(1.0f)));
   const float cell = field.grid().minCellSize();
-  std::vector<FieldRay> rays;
-  Rng rng(5, 0);
-  for (int i = 0; i < 400; ++i) {
-    FieldRay r;
-    r.o = Point3(1.2f * rng.uniform() - 0.6f, 1.2f * rng.uniform() - 0.6f, 4.0f);
-    r.d = glm::normalize(Vec3(0.3f * (rng.uniform() - 0.5f), 0.3f * (rng.uniform() - 0.5f), -1.0f));
-    r.id = uint64_t(i);
-    rays.push_back(r);
-  }
+  const std::vector<FieldRay> rays = raysDownZ(5, 400, 0.6f, 0.3f);
   std::vector<FieldSample> full(rays.size()), preview(rays.size());
   field.query(rays, {}, full, 1);
   field.queryPreview(rays, {}, preview, 1);
