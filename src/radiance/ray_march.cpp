@@ -136,6 +136,31 @@ RadianceSample composite(const VoxelGrid& grid, float T, const Vec3& rgb, float 
   return res;
 }
 
+// A sample's opacity 1 - exp(-densityScale * act(raw) * step). With softplus,
+// exp(-s softplus(raw)) = (1 + e^raw)^-s for s = densityScale * step, which for the usual
+// steps (s = 1: one cell, s = 1/2) needs one exp instead of exp, log1p and exp, and is
+// written without cancellation for small opacities.
+struct SampleAlpha {
+  const VoxelGrid& grid;
+  float s;
+  SampleAlpha(const VoxelGrid& g, float step) : grid(g), s(snap(g.densityScale * step)) {}
+  // densityScale * step is 1 or 1/2 only up to rounding (densityScale = 1 / cell).
+  static float snap(float s) {
+    for (float exact : {1.0f, 0.5f})
+      if (std::abs(s - exact) < 1e-5f * exact) return exact;
+    return s;
+  }
+  float operator()(float raw) const {
+    if (grid.activation != DensityActivation::Softplus) return -std::expm1(-s * grid.act(raw));
+    if (s == 1.0f) return 1.0f / (1.0f + std::exp(-raw));
+    if (s == 0.5f && raw < 40.0f) {  // above, the opacity is 1 in float
+      const float u = std::exp(raw), q = std::sqrt(1.0f + u);
+      return u / (q * (1.0f + q));
+    }
+    return -std::expm1(-s * grid.act(raw));
+  }
+};
+
 template <int D>
 RadianceSample marchRayT(const VoxelGrid& grid, const OccupancyGrid& occ, const GridRay& r,
                        float jitter, float minT) {
@@ -145,6 +170,7 @@ RadianceSample marchRayT(const VoxelGrid& grid, const OccupancyGrid& occ, const 
   float T = 1.0f, depth = 0.0f;
   Vec3 rgb(0.0f);
   const float* dens = grid.density.data();
+  const SampleAlpha alphaOf(grid, r.step);
   forEachSample(grid, occ, r, jitter, [&](float t, uint32_t base, const Vec3& f) {
     float w[8];
     trilinearWeights(f, w);
@@ -152,7 +178,7 @@ RadianceSample marchRayT(const VoxelGrid& grid, const OccupancyGrid& occ, const 
     // need no colour.
     float raw = 0.0f;
     for (int k = 0; k < 8; ++k) raw += w[k] * dens[base + cn.off[k]];
-    float alpha = 1.0f - std::exp(-grid.densityScale * grid.act(raw) * r.step);
+    float alpha = alphaOf(raw);
     if (alpha < 1e-6f) return true;
     Vec3 c;
     sampleRaw<D>(grid, cn, base, w, sh, c);

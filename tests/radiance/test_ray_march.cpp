@@ -114,6 +114,25 @@ TEST(RayMarch, MissEmptyIntervalAndDegenerateRays) {
   EXPECT_TRUE(std::isfinite(face.rgb.x));
 }
 
+// Beer-Lambert through uniform fog: opacity a per cell, a ray down the 15-cell box has
+// transmittance (1 - a)^15 whatever the step. Steps of 1, 1/2 and 0.3 cells take the march's
+// three ways to a sample's opacity (softplus), and ReLU its fourth; thin fog checks small
+// opacities.
+TEST(RayMarch, UniformFogFollowsBeerLambertAtEveryStep) {
+  for (DensityActivation act : {DensityActivation::Softplus, DensityActivation::ReLU})
+    for (float a : {0.1f, 1e-4f})
+      for (float step : {1.0f, 0.5f, 0.3f}) {
+        VoxelGrid g = VoxelGrid::create(Point3(-1.0f), Point3(1.0f), glm::ivec3(16), 0, act, Vec3(0.0f), a);
+        VolumeRenderer r(g, MarchSettings{step, 0.0f, 0.0f});
+        const RadianceSample res = r.render(RenderRay{Point3(0, 0, 3), Vec3(0, 0, -1)});
+        const double expected = 1.0 - std::pow(1.0 - double(a), 15.0);
+        // Thin fog: T *= 1 - alpha rounds by up to 6e-8 per sample, 2e-3 of alpha = 3e-5.
+        const double tol = (a > 0.01f ? 1e-5 : 1e-3) * expected;
+        EXPECT_NEAR(res.opacity, expected, tol) << "a " << a << ", step " << step << ", relu " << int(act);
+        EXPECT_NEAR(res.rgb.x, 0.5 * expected, tol);  // SH 0 -> sigmoid(0) = 1/2
+      }
+}
+
 TEST(RayMarch, PsnrHelper) {
   std::vector<Vec3> a{Vec3(0.5f), Vec3(0.5f)}, b{Vec3(0.6f), Vec3(0.4f)};
   EXPECT_NEAR(psnr(a, b), 20.0, 1e-4);
