@@ -51,7 +51,7 @@ void registerRadianceBenchmarks(const RadianceBenchSettings& settings);
 void printRadianceBenchResults();
 void registerFig11Benchmarks();
 void registerSplatBenchmarks(double minTime);
-void registerPlaceBenchmarks(const std::string& modelPath, double minTime);
+void registerPlaceBenchmarks(const RadianceBenchSettings& model, double minTime);
 void printFig11BenchResults();
 
 }  // namespace inim::bench

@@ -163,7 +163,7 @@ struct SampleAlpha {
 
 template <int D>
 RadianceSample marchRayT(const VoxelGrid& grid, const OccupancyGrid& occ, const GridRay& r,
-                       float jitter, float minT) {
+                       float jitter, float minT, bool completeEnded) {
   float sh[kMaxShCount];
   evalSh(D, r.dir, sh);
   Corners cn(grid);
@@ -188,6 +188,10 @@ RadianceSample marchRayT(const VoxelGrid& grid, const OccupancyGrid& occ, const 
     T *= 1.0f - alpha;
     return T >= minT;
   });
+  if (completeEnded && T < minT) {
+    const float k = 1.0f / (1.0f - T);
+    rgb *= k, depth *= k, T = 0.0f;
+  }
   return composite(grid, T, rgb, depth);
 }
 
@@ -242,11 +246,11 @@ RadianceSample marchRayGradT(const VoxelGrid& grid, const OccupancyGrid& occ, co
 }  // namespace
 
 RadianceSample marchRay(const VoxelGrid& grid, const OccupancyGrid& occ, const GridRay& r,
-                      float jitter, float minTransmittance) {
+                      float jitter, float minTransmittance, bool completeEnded) {
   switch (grid.shDegree) {
-    case 0: return marchRayT<0>(grid, occ, r, jitter, minTransmittance);
-    case 1: return marchRayT<1>(grid, occ, r, jitter, minTransmittance);
-    default: return marchRayT<2>(grid, occ, r, jitter, minTransmittance);
+    case 0: return marchRayT<0>(grid, occ, r, jitter, minTransmittance, completeEnded);
+    case 1: return marchRayT<1>(grid, occ, r, jitter, minTransmittance, completeEnded);
+    default: return marchRayT<2>(grid, occ, r, jitter, minTransmittance, completeEnded);
   }
 }
 

@@ -19,6 +19,10 @@ struct MarchSettings {
   float stepVoxels = 0.5f;          // step in units of the smallest cell size
   float minTransmittance = 1e-4f;   // early ray termination
   float occupancyAlpha = 1e-3f;     // a cell is empty below this opacity per step
+  // A ray ended early takes, for its remaining transmittance, the colour and depth it has seen
+  // (opacity 1) rather than the background: with a high minTransmittance, the far side of a
+  // soft surface looks like its near side, not like the background.
+  bool completeEnded = false;
   float stepWorld(const VoxelGrid& g) const { return stepVoxels * g.minCellSize(); }
 };
 
@@ -45,7 +49,7 @@ struct RadianceSample {
 inline RadianceSample backgroundResult(const VoxelGrid& g) { return {g.background, kInfinity, 0.0f}; }
 
 RadianceSample marchRay(const VoxelGrid& grid, const OccupancyGrid& occ, const GridRay& r,
-                      float jitter, float minTransmittance);
+                      float jitter, float minTransmittance, bool completeEnded = false);
 
 // Gradient of the loss w.r.t. one sample's interpolated raw values; the caller spreads it
 // to the 8 corners of cell `base` with trilinear weights from f (and the SH basis for colour).

@@ -133,6 +133,22 @@ TEST(RayMarch, UniformFogFollowsBeerLambertAtEveryStep) {
       }
 }
 
+// A ray ended early (fog of opacity 1/2 per cell, ended at 10 % transmittance over a black
+// background): by default the rest is background, so the colour is darker than the fog's;
+// completed, the rest is what the ray has seen: the fog's colour, opacity 1, the same depth.
+TEST(RayMarch, EndedRayCompletedWithWhatItHasSeen) {
+  VoxelGrid g = VoxelGrid::create(Point3(-1.0f), Point3(1.0f), glm::ivec3(16), 0, DensityActivation::Softplus,
+                                  Vec3(0.0f), 0.5f);
+  const RenderRay ray{Point3(0, 0, 3), Vec3(0, 0, -1)};
+  const RadianceSample plain = VolumeRenderer(g, MarchSettings{1.0f, 0.1f, 1e-3f, false}).render(ray);
+  const RadianceSample done = VolumeRenderer(g, MarchSettings{1.0f, 0.1f, 1e-3f, true}).render(ray);
+  EXPECT_NEAR(plain.opacity, 1.0 - 0.0625, 1e-6);  // ended after 4 cells: T = 1/16
+  EXPECT_NEAR(plain.rgb.x, 0.5 * (1.0 - 0.0625), 1e-6);
+  EXPECT_EQ(done.opacity, 1.0f);
+  EXPECT_NEAR(done.rgb.x, 0.5, 1e-6);  // SH 0 -> sigmoid(0)
+  EXPECT_NEAR(done.depth, plain.depth, 1e-6);
+}
+
 TEST(RayMarch, PsnrHelper) {
   std::vector<Vec3> a{Vec3(0.5f), Vec3(0.5f)}, b{Vec3(0.6f), Vec3(0.4f)};
   EXPECT_NEAR(psnr(a, b), 20.0, 1e-4);
