@@ -35,7 +35,7 @@ void addBenchCommand(CLI::App& app) {
                   "Aperture table grid of their references (0: --view-grid; larger: the table's own error shows "
                   "in the RMSE)")
       ->check(CLI::Range(0, 64))->capture_default_str();
-  cmd->add_option("--field-model", r.modelPath, "Trained model (.inimrf) for radiance/eia-query");
+  cmd->add_option("--field-model", r.modelPath, "Trained model (.inimrf) for radiance/eia-query and the place/ model runs");
   cmd->add_option("--field-scale", o->fieldScale, "Its placement scale, mm per field unit (default: the model's)");
   cmd->add_option("--field-rotate-deg", o->fieldRotate, "Its placement rotation rx,ry,rz, degrees");
   cmd->add_option("--field-translate-mm", o->fieldTranslate, "Its placement translation, mm");
