@@ -121,6 +121,7 @@ class Fig11Run {
     v.reconstructionSeconds = rec.stats.seconds;
     ReferenceSettings rs;
     rs.spp = s_.referenceSpp;
+    rs.sppKey = "reference_spp";
     rs.seed = s_.seed;
     rs.depth = s_.depthError;
     ViewResult ref = renderReference(*in_.field.field, in_.fieldToDisplay, *camera, in_.camera.sensor, rs);
@@ -186,6 +187,7 @@ class Fig11Run {
                           const PixelMask& mask, const Image& limited) {
     ReferenceSettings rs;
     rs.spp = s_.referenceSpp;
+    rs.sppKey = "reference_spp";
     rs.seed = s_.seed + 1;
     rs.progress = false;
     const Image second = renderReference(*in_.field.field, in_.fieldToDisplay, camera, in_.camera.sensor, rs).image;

@@ -100,6 +100,7 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
   // The reference, with its depth, and a view-sized comparison as fig11 makes it.
   ReferenceSettings ref;
   ref.spp = rs.referenceSpp;
+  ref.sppKey = "reference_spp";
   ref.seed = s.view.seed;
   ref.progress = s.view.progress;
   ref.depth = true;

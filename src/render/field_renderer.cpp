@@ -132,16 +132,16 @@ constexpr int kTileSize = 16;
 
 // Before any pixel: the image, and the camera rays of the tiles in flight (one per worker thread),
 // which grow with spp. Sample numbers are 32-bit (FieldRay::sample).
-void checkRenderSize(int W, int H, size_t channels, int spp, int raysPerSample) {
+void checkRenderSize(int W, int H, size_t channels, int spp, const char* sppKey, int raysPerSample) {
   const std::string size = std::to_string(W) + " x " + std::to_string(H);
   checkAllocation("", "width/height", size, {{double(W) * H, double(channels) * sizeof(float)}},
                   "the " + size + " image of " + std::to_string(channels) + " channels");
   if (double(spp) * raysPerSample > double(UINT32_MAX))
-    throw InputError("", "spp", std::to_string(spp), "at most " + std::to_string(UINT32_MAX / uint32_t(raysPerSample)) +
+    throw InputError("", sppKey, std::to_string(spp), "at most " + std::to_string(UINT32_MAX / uint32_t(raysPerSample)) +
                                                          " samples per pixel");
   const double perRay = sizeof(FieldRay) + sizeof(SampledWavelengths) + sizeof(float) + sizeof(FieldSample);
   const double tilePixels = double(std::min(W, kTileSize)) * std::min(H, kTileSize);
-  checkAllocation("", "spp", std::to_string(spp),
+  checkAllocation("", sppKey, std::to_string(spp),
                   {{double(hardwareThreads()) * tilePixels * spp * raysPerSample, perRay}},
                   "the ray buffer of " + std::to_string(hardwareThreads()) + " tiles of " + std::to_string(int64_t(tilePixels)) +
                       " pixels in flight");
@@ -154,7 +154,7 @@ FieldRender renderThroughCamera(const Field& field, const CameraModel& camera, c
   const auto t0 = std::chrono::steady_clock::now();
   const int W = camera.width(), H = camera.height();
   const TileRenderer tiles(field, camera, sampler, film, settings);
-  checkRenderSize(W, H, film.channels().size(), settings.spp, tiles.raysPerSample());
+  checkRenderSize(W, H, film.channels().size(), settings.spp, settings.sppKey, tiles.raysPerSample());
   FieldRender out;
   out.image = Image(W, H, film.channels());
   std::atomic<uint64_t> cameraRays{0}, hitRays{0};

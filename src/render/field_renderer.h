@@ -30,6 +30,7 @@ namespace inim {
 
 struct FieldRenderSettings {
   int spp = 16;                    // camera samples per pixel, >= 1
+  const char* sppKey = "spp";      // the setting spp came from, named when it is refused
   uint64_t seed = 1;               // the field's seed (Field::query)
   int raysPerBatch = 4096;         // rays per Field::query call
   bool progress = true;            // a bar on a terminal only

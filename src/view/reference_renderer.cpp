@@ -145,13 +145,14 @@ glm::dmat3 rgbToCameraMatrix(const Field& field, const CameraSensor& sensor) {
 
 ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, const CameraModel& camera,
                            const CameraSensor& sensor, const ReferenceSettings& s) {
-  if (s.spp < 1) throw InputError("", "spp", std::to_string(s.spp), "a whole number >= 1");
+  if (s.spp < 1) throw InputError("", s.sppKey, std::to_string(s.spp), "a whole number >= 1");
   const bool spectral = field.encoding() == FieldEncoding::Spectral;
   const ApertureMeanWeight meanWeight(camera);
   const CameraRgbFilm film(sensor, spectral ? glm::dmat3(1.0) : rgbToCameraMatrix(field, sensor), meanWeight,
                            camera.width());
   FieldRenderSettings fs;
   fs.spp = s.spp;
+  fs.sppKey = s.sppKey;
   fs.seed = s.seed;
   fs.raysPerBatch = s.raysPerBatch;
   fs.progress = s.progress;

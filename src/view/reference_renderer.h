@@ -62,6 +62,7 @@ constexpr double kDispersionThresholdPx = 0.25;
 
 struct ReferenceSettings {
   int spp = 16;
+  const char* sppKey = "spp";  // the setting spp came from, named when it is refused
   CameraDispersion dispersion = CameraDispersion::Auto;
   uint64_t seed = 1;
   bool progress = true;
@@ -69,7 +70,8 @@ struct ReferenceSettings {
   bool depth = false;  // add channels A and Z (see above)
 };
 
-// `fieldToDisplay`: the placement (Placement::toDisplay()). InputError (key spp) for spp < 1.
+// `fieldToDisplay`: the placement (Placement::toDisplay()). InputError (key sppKey) for spp < 1
+// or beyond the memory budget.
 // stats.displayRays counts nothing here; stats.emittingRays counts samples that hit a surface
 // (FieldSample::opacity > 0).
 ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, const CameraModel& camera,

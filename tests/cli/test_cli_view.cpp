@@ -156,6 +156,11 @@ TEST(CliView, ReferenceWritesTheComparisonAndTheBudget) {
   expectBadInput(base + "--out " + out + " --eia-exposure 0.5 --budget-rungs ideal,+sparkle",
                  {"--budget-rungs", "+sparkle", "+real_mla"}, {out, files[1], files[3]});
   expectBadInput(base + "--out " + out + " --eia-exposure 0", {"--eia-exposure"}, {out, files[1]});
+  // The reference's own sample count is named when its ray buffer is over the memory budget.
+  const std::string bigReference = "view --display " + smallDisplay() + " --eia " + eia + cameraArgs() +
+                                   " --reference --scene " + data("scenes/test/point-sphere.json") +
+                                   " --reference-spp 100000000 --eia-exposure 0.5 --out " + out;
+  expectBadInput(bigReference, {"--reference-spp", "100000000", "memory"}, {out, files[1], files[3]});
   const CliResult r = runInim(base + "--out " + out + " --eia-exposure 0.5 --budget-rungs ideal,+colour_chain");
   ASSERT_EQ(r.status, 0) << r.output;
   for (const std::string& f : files) EXPECT_TRUE(fs::exists(f)) << f;
