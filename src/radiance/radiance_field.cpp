@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "radiance/grid_io.h"
@@ -12,7 +13,21 @@
 namespace inim {
 
 RadianceField::RadianceField(VoxelGrid grid, const MarchSettings& settings)
-    : grid_(std::move(grid)), renderer_(grid_, settings), previewRenderer_(grid_, kPreviewMarch) {}
+    : grid_(std::move(grid)), renderer_(grid_, settings), previewRenderer_(grid_, previewMarch(settings)) {}
+
+MarchSettings RadianceField::previewMarch(const MarchSettings& full) {
+  MarchSettings m;
+  m.stepVoxels = 1.0f;
+  m.minTransmittance = 1e-2f;
+  m.completeEnded = true;
+  // A cell is empty when its opacity over one step is under the threshold; over a step k times
+  // longer that opacity is 1 - (1 - a)^k. The preview then sees the haze the full query sees,
+  // no more (a lower threshold made it both slower and further from the full query).
+  m.occupancyAlpha = float(1.0 - std::pow(1.0 - double(full.occupancyAlpha), double(m.stepVoxels / full.stepVoxels)));
+  m.colourMinWeight = 0.005f;
+  m.colourSkipBudget = 0.1f;
+  return m;
+}
 
 std::unique_ptr<RadianceField> RadianceField::load(const std::string& path) {
   return std::make_unique<RadianceField>(loadVoxelGrid(path));

@@ -163,14 +163,15 @@ struct SampleAlpha {
 
 template <int D>
 RadianceSample marchRayT(const VoxelGrid& grid, const OccupancyGrid& occ, const GridRay& r,
-                       float jitter, float minT, bool completeEnded) {
+                       float jitter, const MarchSettings& ms) {
   float sh[kMaxShCount];
   evalSh(D, r.dir, sh);
   Corners cn(grid);
-  float T = 1.0f, depth = 0.0f;
+  float T = 1.0f, depth = 0.0f, skipped = 0.0f, coloured = 0.0f;
   Vec3 rgb(0.0f);
   const float* dens = grid.density.data();
   const SampleAlpha alphaOf(grid, r.step);
+  const float minT = ms.minTransmittance;
   forEachSample(grid, occ, r, jitter, [&](float t, uint32_t base, const Vec3& f) {
     float w[8];
     trilinearWeights(f, w);
@@ -180,15 +181,23 @@ RadianceSample marchRayT(const VoxelGrid& grid, const OccupancyGrid& occ, const 
     for (int k = 0; k < 8; ++k) raw += w[k] * dens[base + cn.off[k]];
     float alpha = alphaOf(raw);
     if (alpha < 1e-6f) return true;
-    Vec3 c;
-    sampleRaw<D>(grid, cn, base, w, sh, c);
     float wt = T * alpha;
-    rgb += wt * c;
     depth += wt * t;
     T *= 1.0f - alpha;
+    // Colour is most of a sample's cost (12+ coefficients at 8 corners, far apart in memory).
+    if (wt < ms.colourMinWeight && skipped + wt < ms.colourSkipBudget) {
+      skipped += wt;
+    } else {
+      Vec3 c;
+      sampleRaw<D>(grid, cn, base, w, sh, c);
+      rgb += wt * c;
+      coloured += wt;
+    }
     return T >= minT;
   });
-  if (completeEnded && T < minT) {
+  if (skipped > 0.0f)  // the weight left without colour takes the others' mean (none: the background)
+    rgb = coloured > 0.0f ? rgb * ((skipped + coloured) / coloured) : skipped * grid.background;
+  if (ms.completeEnded && T < minT) {
     const float k = 1.0f / (1.0f - T);
     rgb *= k, depth *= k, T = 0.0f;
   }
@@ -246,11 +255,11 @@ RadianceSample marchRayGradT(const VoxelGrid& grid, const OccupancyGrid& occ, co
 }  // namespace
 
 RadianceSample marchRay(const VoxelGrid& grid, const OccupancyGrid& occ, const GridRay& r,
-                      float jitter, float minTransmittance, bool completeEnded) {
+                      float jitter, const MarchSettings& settings) {
   switch (grid.shDegree) {
-    case 0: return marchRayT<0>(grid, occ, r, jitter, minTransmittance, completeEnded);
-    case 1: return marchRayT<1>(grid, occ, r, jitter, minTransmittance, completeEnded);
-    default: return marchRayT<2>(grid, occ, r, jitter, minTransmittance, completeEnded);
+    case 0: return marchRayT<0>(grid, occ, r, jitter, settings);
+    case 1: return marchRayT<1>(grid, occ, r, jitter, settings);
+    default: return marchRayT<2>(grid, occ, r, jitter, settings);
   }
 }
 

@@ -23,6 +23,12 @@ struct MarchSettings {
   // (opacity 1) rather than the background: with a high minTransmittance, the far side of a
   // soft surface looks like its near side, not like the background.
   bool completeEnded = false;
+  // Colour is evaluated only for samples carrying at least colourMinWeight of the ray's light
+  // (T * alpha), as long as the weight left without colour stays under colourSkipBudget; that
+  // weight takes the mean colour of the samples evaluated, so a ray's colour is off by at most
+  // colourSkipBudget times the spread of its colours. 0: every sample's colour.
+  float colourMinWeight = 0.0f;
+  float colourSkipBudget = 0.0f;
   float stepWorld(const VoxelGrid& g) const { return stepVoxels * g.minCellSize(); }
 };
 
@@ -49,7 +55,7 @@ struct RadianceSample {
 inline RadianceSample backgroundResult(const VoxelGrid& g) { return {g.background, kInfinity, 0.0f}; }
 
 RadianceSample marchRay(const VoxelGrid& grid, const OccupancyGrid& occ, const GridRay& r,
-                      float jitter, float minTransmittance, bool completeEnded = false);
+                      float jitter, const MarchSettings& settings);
 
 // Gradient of the loss w.r.t. one sample's interpolated raw values; the caller spreads it
 // to the 8 corners of cell `base` with trilinear weights from f (and the SH basis for colour).

@@ -21,7 +21,7 @@ RadianceSample VolumeRenderer::render(const RenderRay& ray) const {
   GridRay gr;
   if (!makeGridRay(grid_, ray.o, ray.d / len, ray.tNear, ray.tFar, settings_.stepWorld(grid_), gr))
     return backgroundResult(grid_);
-  return marchRay(grid_, occupancy_, gr, 0.5f, settings_.minTransmittance, settings_.completeEnded);
+  return marchRay(grid_, occupancy_, gr, 0.5f, settings_);
 }
 
 void VolumeRenderer::render(std::span<const RenderRay> rays, std::span<RadianceSample> out) const {

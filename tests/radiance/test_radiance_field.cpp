@@ -92,6 +92,24 @@ TEST(RadianceField, EmptyIntervalsAndMissesSeeTheBackground) {
   }
 }
 
+// The preview skips the cells the full query skips, no more and no fewer: uniform fog just under
+// and just over the full query's threshold (its opacity per half-cell step) is empty, or not,
+// for both.
+TEST(RadianceField, PreviewSkipsTheCellsTheFullQuerySkips) {
+  const MarchSettings full;  // half-cell steps
+  const MarchSettings preview = RadianceField::previewMarch(full);
+  for (float scale : {0.9f, 1.1f}) {
+    const float perHalfCell = scale * full.occupancyAlpha;
+    const float perCell = 1.0f - (1.0f - perHalfCell) * (1.0f - perHalfCell);
+    const VoxelGrid g = VoxelGrid::create(Point3(-1.0f), Point3(1.0f), glm::ivec3(9), 1,
+                                          DensityActivation::Softplus, Vec3(1.0f), perCell);
+    const double a = VolumeRenderer(g, full).occupancy().occupiedFraction();
+    const double b = VolumeRenderer(g, preview).occupancy().occupiedFraction();
+    EXPECT_EQ(a, scale > 1.0f ? 1.0 : 0.0) << scale;
+    EXPECT_EQ(b, a) << scale;
+  }
+}
+
 // The preview query (one-cell steps, rays ended at 1 % transmittance) against the full query on
 // a ball with a hard edge (density -20 -> 8 within one cell), the worst case for the step: colour
 // and opacity within 0.07 on any ray (edge rays, measured 0.053), 0.003 on average (measured

@@ -149,6 +149,63 @@ TEST(RayMarch, EndedRayCompletedWithWhatItHasSeen) {
   EXPECT_NEAR(done.depth, plain.depth, 1e-6);
 }
 
+// Haze of opacity a per cell in front (z > 0, grey 1/2), an opaque back (z < 0, red-white
+// sigmoid(4)), on a black background; SH 0, so colour = sigmoid(Y00 * coefficient).
+VoxelGrid hazeOverWall(float haze) {
+  VoxelGrid g = VoxelGrid::create(Point3(-1.0f), Point3(1.0f), glm::ivec3(16), 0, DensityActivation::Softplus,
+                                  Vec3(0.0f), haze);
+  const float wall = g.actInverse(-std::log(1.0f - 0.9f));
+  for (int x = 0; x < 16; ++x)
+    for (int y = 0; y < 16; ++y)
+      for (int z = 0; z < 8; ++z) {
+        const size_t i = g.index(x, y, z);
+        g.density[i] = wall;
+        for (int c = 0; c < 3; ++c) g.color[3 * i + size_t(c)] = 4.0f / 0.28209479f;
+      }
+  return g;
+}
+
+// Leaving out the colour of the faint samples changes neither opacity nor depth, and moves the
+// colour by at most the budget times the spread of the colours (here sigmoid(4) - 1/2);
+// with no budget it leaves nothing out.
+TEST(RayMarch, ColourLeftOutOnlyWithinItsBudget) {
+  const VoxelGrid g = hazeOverWall(0.004f);
+  const RenderRay ray{Point3(0, 0, 3), Vec3(0, 0, -1)};
+  const MarchSettings exact{1.0f, 0.0f, 0.0f};
+  const RadianceSample ref = VolumeRenderer(g, exact).render(ray);
+  const double spread = 1.0 / (1.0 + std::exp(-4.0)) - 0.5;
+  for (float budget : {0.0f, 0.001f, 0.01f, 0.05f}) {
+    MarchSettings cheap = exact;
+    cheap.colourMinWeight = 0.01f;  // every haze sample (0.004 of the light) is under it
+    cheap.colourSkipBudget = budget;
+    const RadianceSample res = VolumeRenderer(g, cheap).render(ray);
+    EXPECT_EQ(res.opacity, ref.opacity);
+    EXPECT_EQ(res.depth, ref.depth);
+    for (int c = 0; c < 3; ++c) EXPECT_LE(std::abs(res.rgb[c] - ref.rgb[c]), budget * spread + 1e-6) << budget;
+    if (budget == 0.0f) {
+      EXPECT_EQ(res.rgb, ref.rgb);
+    } else if (budget >= 0.01f) {
+      EXPECT_GT(std::abs(res.rgb.x - ref.rgb.x), 1e-4) << "nothing was left out";
+    }
+  }
+}
+
+// A ray whose every sample is left out (thin haze, 1.5 % of the light in all, under a 5 %
+// budget) takes the background for it: off by that light times |haze colour - background|.
+TEST(RayMarch, AllColourLeftOutTakesTheBackground) {
+  VoxelGrid g = VoxelGrid::create(Point3(-1.0f), Point3(1.0f), glm::ivec3(16), 0, DensityActivation::Softplus,
+                                  Vec3(1.0f), 0.001f);
+  const RenderRay ray{Point3(0, 0, 3), Vec3(0, 0, -1)};
+  MarchSettings cheap{1.0f, 0.0f, 0.0f};
+  cheap.colourMinWeight = 0.01f;
+  cheap.colourSkipBudget = 0.05f;
+  const RadianceSample ref = VolumeRenderer(g, MarchSettings{1.0f, 0.0f, 0.0f}).render(ray);
+  const RadianceSample res = VolumeRenderer(g, cheap).render(ray);
+  EXPECT_NEAR(ref.opacity, 1.0 - std::pow(0.999, 15.0), 1e-6);
+  EXPECT_NEAR(res.rgb.x, 1.0f, 1e-6);  // all background
+  EXPECT_NEAR(res.rgb.x - ref.rgb.x, 0.5 * ref.opacity, 1e-6);
+}
+
 TEST(RayMarch, PsnrHelper) {
   std::vector<Vec3> a{Vec3(0.5f), Vec3(0.5f)}, b{Vec3(0.6f), Vec3(0.4f)};
   EXPECT_NEAR(psnr(a, b), 20.0, 1e-4);
