@@ -1,5 +1,8 @@
 #include "core/parallel.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -48,6 +51,11 @@ void parallelForRange(int64_t count, const std::function<void(int64_t, int64_t)>
         if (progress) progress->add(uint64_t(r.end() - r.begin()));
       },
       tbb::simple_partitioner());
+}
+
+void lowerThisThreadsPriority() {
+  // On Linux a nice value belongs to the thread (its id from gettid), not to the process.
+  (void)setpriority(PRIO_PROCESS, id_t(gettid()), 19);
 }
 
 }  // namespace inim

@@ -34,4 +34,8 @@ void parallelForRange(int64_t count, const std::function<void(int64_t, int64_t)>
 
 int hardwareThreads();
 
+// Gives the calling thread the lowest scheduling priority (nice 19), for background work that
+// should only use what the rest of the program leaves; a no-op where that is not allowed.
+void lowerThisThreadsPriority();
+
 }  // namespace inim

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/output_file.h"
+#include "core/parallel.h"
 #include "place/place_preview.h"
 #include "synthesis/display_overrides.h"
 #include "synthesis/preview.h"
@@ -73,6 +74,7 @@ PlaceSession::PlaceSession(const PlaceOptions& o, LoadedField given)
   fs::create_directories(outDir_);  // only once everything loaded: a bad start writes nothing
   jobs_ = std::make_unique<PlaceJobs>(outDir_);
   worker_ = std::thread([this] { workerLoop(); });
+  diagramWorker_ = std::thread([this] { diagramLoop(); });
 }
 
 PlaceSession::~PlaceSession() {
@@ -82,6 +84,7 @@ PlaceSession::~PlaceSession() {
   }
   changed_.notify_all();
   worker_.join();
+  diagramWorker_.join();
 }
 
 std::shared_ptr<const PlaceDisplay> PlaceSession::displayFor(const PlaceState& s) const {
@@ -131,15 +134,20 @@ ImageAnswer PlaceSession::image(ImageKind kind, uint64_t revision, std::chrono::
     return a;
   };
   while (true) {
+    const bool kept = kind == ImageKind::Level0 || kind == ImageKind::Diagram;
+    const Rendered* done = kind == ImageKind::Level0 ? level0Of(revision)
+                           : kind == ImageKind::Diagram ? diagramOf(revision) : nullptr;
+    const auto& inFlight = kind == ImageKind::Level0 ? level0InFlight_ : diagramInFlight_;
     if (revision < current_.state.revision) {
-      // An older revision's level 0 is served when it was finished, waited for when under way.
-      if (kind != ImageKind::Level0) return a.status = ImageAnswer::Status::Stale, a;
-      if (const Rendered* r = level0Of(revision)) return answer(*r);
-      if (level0InFlight_ != revision) return a.status = ImageAnswer::Status::Stale, a;
+      // An older revision's level 0 or diagram is served when it was finished, waited for when
+      // under way.
+      if (!kept) return a.status = ImageAnswer::Status::Stale, a;
+      if (done) return answer(*done);
+      if (inFlight != revision) return a.status = ImageAnswer::Status::Stale, a;
     } else if (revision > current_.state.revision) {
       return a.status = ImageAnswer::Status::Future, a;
-    } else if (kind == ImageKind::Level0) {
-      if (const Rendered* r = level0Of(revision)) return answer(*r);
+    } else if (kept) {
+      if (done) return answer(*done);
     } else if (auto it = results_.find(int(kind)); it != results_.end()) {
       return answer(it->second);
     }
@@ -152,18 +160,14 @@ const PlaceSession::Rendered* PlaceSession::level0Of(uint64_t revision) const {
   return lastLevel0_ && lastLevel0_->first == revision ? &lastLevel0_->second : nullptr;
 }
 
+const PlaceSession::Rendered* PlaceSession::diagramOf(uint64_t revision) const {
+  return lastDiagram_ && lastDiagram_->first == revision ? &lastDiagram_->second : nullptr;
+}
+
 // The next image to render for the current revision, or none (waiting until there is one).
 std::optional<ImageKind> PlaceSession::nextWork(std::unique_lock<std::mutex>& lock) {
   while (!stop_) {
     if (!level0Of(current_.state.revision)) return ImageKind::Level0;
-    if (!results_.count(int(ImageKind::Diagram))) {
-      // While changes keep coming the diagram gives way to level 0: it is drawn once the state
-      // has been still for 50 ms, or when the last one drawn is 250 ms old.
-      const auto due = std::min(current_.changedAt + 50ms, lastDiagramAt_ + 250ms);
-      if (Clock::now() >= due) return ImageKind::Diagram;
-      changed_.wait_until(lock, due);
-      continue;
-    }
     const auto still = current_.changedAt + quiet_;
     if (Clock::now() < still) {
       changed_.wait_until(lock, still);
@@ -181,7 +185,6 @@ void PlaceSession::workerLoop() {
   while (auto kind = nextWork(lock)) {
     const Snapshot snap = current_;
     if (*kind == ImageKind::Level0) level0InFlight_ = snap.state.revision;
-    if (*kind == ImageKind::Diagram) lastDiagramAt_ = Clock::now();
     lock.unlock();
     Rendered r;
     bool cancelled = false;
@@ -201,10 +204,7 @@ void PlaceSession::workerLoop() {
       changed_.notify_all();  // a request waiting for this level 0 learns it is stale
       continue;
     }
-    r.serverMs = std::chrono::duration<double, std::milli>(Clock::now() - snap.changedAt).count();
-    auto& lat = latencies_[size_t(*kind)];
-    lat.push_back(r.serverMs);
-    if (lat.size() > 1000) lat.pop_front();
+    recordLatency(*kind, r, snap);
     if (*kind == ImageKind::Level0)
       lastLevel0_ = {snap.state.revision, std::move(r)};
     else
@@ -213,31 +213,77 @@ void PlaceSession::workerLoop() {
   }
 }
 
+// Level 0 of this revision asked the same rays (`hits`): the diagram only draws.
+PlaceSession::Rendered PlaceSession::renderDiagram(const Snapshot& snap,
+                                                   std::shared_ptr<const std::vector<LensletFirstHit>> hits) {
+  PreviewSettings ps;
+  ps.width = 900;
+  ps.seed = seed_;
+  ps.cancelled = [this] {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return stop_;
+  };
+  if (hits) ps.knownHits = *hits;
+  const PreviewResult p = renderPlacementPreview(snap.display->layout, *field_.field, snap.state.placement.toDisplay(),
+                                                 snap.state.vcpMm, ps);
+  Rendered r;
+  r.png = encodePng(p.image);
+  r.counts = {{"real", p.real}, {"virtual", p.virtualHits}, {"on_plane", p.onPlane}, {"missed", p.missed}};
+  return r;
+}
+
+void PlaceSession::recordLatency(ImageKind kind, Rendered& r, const Snapshot& snap) {
+  r.serverMs = std::chrono::duration<double, std::milli>(Clock::now() - snap.changedAt).count();
+  auto& lat = latencies_[size_t(kind)];
+  lat.push_back(r.serverMs);
+  if (lat.size() > 1000) lat.pop_front();
+}
+
+// The diagram of the newest revision whose level 0 is done (it draws that level 0's hits), in
+// the time the level-0 renders leave: this thread runs at the lowest priority. Like level 0, a
+// diagram under way is finished and kept for its revision while a drag goes on.
+void PlaceSession::diagramLoop() {
+  lowerThisThreadsPriority();
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!stop_) {
+    const Snapshot snap = current_;
+    if (diagramOf(snap.state.revision) || !level0Of(snap.state.revision)) {
+      changed_.wait(lock);
+      continue;
+    }
+    diagramInFlight_ = snap.state.revision;
+    const auto hits = level0Of(snap.state.revision)->lensletHits;
+    lock.unlock();
+    Rendered r;
+    bool cancelled = false;
+    try {
+      r = renderDiagram(snap, hits);
+    } catch (const PreviewCancelled&) {
+      cancelled = true;
+    } catch (const Interrupted&) {
+      cancelled = true;
+    } catch (const std::exception& e) {
+      r.error = e.what();
+    }
+    lock.lock();
+    diagramInFlight_.reset();
+    if (!cancelled && !stop_) {
+      recordLatency(ImageKind::Diagram, r, snap);
+      lastDiagram_ = {snap.state.revision, std::move(r)};
+    }
+    changed_.notify_all();
+  }
+}
+
 PlaceSession::Rendered PlaceSession::render(ImageKind kind, const Snapshot& snap) {
   const Transform toDisplay = snap.state.placement.toDisplay();
   const EiLayout& L = snap.display->layout;
   const uint64_t rev = snap.state.revision;
-  auto cancelled = [this, rev, kind] {
+  auto cancelled = [this, rev, kind] {  // a level 0 is finished once begun
     std::lock_guard<std::mutex> lock(mutex_);
     return stop_ || (kind != ImageKind::Level0 && current_.state.revision != rev);
   };
   Rendered r;
-  if (kind == ImageKind::Diagram) {
-    PreviewSettings ps;
-    ps.width = 900;
-    ps.seed = seed_;
-    ps.cancelled = cancelled;
-    std::shared_ptr<const std::vector<LensletFirstHit>> known;
-    {  // level 0 of this revision asked the same rays: the diagram only draws
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (const Rendered* l0 = level0Of(rev)) known = l0->lensletHits;
-    }
-    if (known) ps.knownHits = *known;
-    const PreviewResult p = renderPlacementPreview(L, *field_.field, toDisplay, snap.state.vcpMm, ps);
-    r.png = encodePng(p.image);
-    r.counts = {{"real", p.real}, {"virtual", p.virtualHits}, {"on_plane", p.onPlane}, {"missed", p.missed}};
-    return r;
-  }
   PreviewRequest req;
   req.level = int(kind);
   req.viewingDistanceMm = snap.state.viewingDistanceMm;

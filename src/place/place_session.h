@@ -3,10 +3,12 @@
 // the page controls, the previews rendered for it in one worker thread, and the write jobs.
 //
 // A change of state (putState) makes a new revision. The worker renders level 0 of the newest
-// revision at once, then its diagram, then levels 1 and 2 once the state has been still for
-// `quietMs`; a newer revision interrupts it at its next batch of rays (place_preview.h). A
-// request for an image waits until that image of its revision is ready, and is answered
-// "stale" at once when the state has moved on, so the page never waits for old work.
+// revision at once, then levels 1 and 2 once the state has been still for `quietMs`; a newer
+// revision interrupts it at its next batch of rays (place_preview.h). A second thread, at the
+// lowest priority, draws the diagram of the newest revision whose level 0 is done, so the
+// diagram never holds up a level 0. A request for an image waits until that image of its
+// revision is ready, and is answered "stale" at once when the state has moved on, so the page
+// never waits for old work; a level 0 or diagram already under way is finished and served.
 //
 //   PlaceSession session(options);              // InputError for a bad field, display or run file
 //   Json st = session.putState(R"({"vcp_mm": 80})");  // InputError (400) changes nothing
@@ -96,10 +98,15 @@ class PlaceSession {
   };
 
   void workerLoop();
+  void diagramLoop();
+  // Records a finished image's server time (call with mutex_ held).
+  void recordLatency(ImageKind kind, Rendered& r, const Snapshot& snap);
   std::optional<ImageKind> nextWork(std::unique_lock<std::mutex>& lock);
-  Rendered render(ImageKind kind, const Snapshot& snap);
-  // The kept level 0 of `revision`, or null (call with mutex_ held).
+  Rendered render(ImageKind kind, const Snapshot& snap);  // levels 0-2
+  Rendered renderDiagram(const Snapshot& snap, std::shared_ptr<const std::vector<LensletFirstHit>> hits);
+  // The kept level 0 or diagram of `revision`, or null (call with mutex_ held).
   const Rendered* level0Of(uint64_t revision) const;
+  const Rendered* diagramOf(uint64_t revision) const;
   std::shared_ptr<const PlaceDisplay> displayFor(const PlaceState& s) const;
 
   LoadedField field_;
@@ -112,17 +119,18 @@ class PlaceSession {
   mutable std::mutex mutex_;
   std::condition_variable changed_;  // the state, a result, or stop
   Snapshot current_;
-  std::map<int, Rendered> results_;   // of current_'s revision, by ImageKind, but level 0
+  std::map<int, Rendered> results_;   // of current_'s revision: levels 1 and 2
   // Level 0 is short and the page needs frames while the user drags: once started it is
   // finished and kept for its revision, even when the state has moved on meanwhile.
   std::optional<uint64_t> level0InFlight_;
   std::optional<std::pair<uint64_t, Rendered>> lastLevel0_;  // the newest finished, by revision
-  std::chrono::steady_clock::time_point lastDiagramAt_;       // when the last diagram began
+  std::optional<uint64_t> diagramInFlight_;                    // the same for the diagram
+  std::optional<std::pair<uint64_t, Rendered>> lastDiagram_;
   std::optional<double> exposure_;    // fixed by the first level-0 frame, so brightness holds still
   std::vector<std::deque<double>> latencies_;
   bool stop_ = false;
   std::unique_ptr<PlaceJobs> jobs_;
-  std::thread worker_;
+  std::thread worker_, diagramWorker_;
 };
 
 }  // namespace inim

@@ -95,6 +95,26 @@ TEST(PlaceSession, ALevel0UnderWayIsFinishedAndServedAfterTheStateMovesOn) {
   EXPECT_EQ(g.status(ImageKind::Level0, 0), S::Stale);
 }
 
+// The diagram, drawn by its own thread from a revision's level 0, is kept for that revision
+// like level 0: still served once the state has moved on, until a newer diagram replaces it.
+TEST(PlaceSession, AFinishedDiagramIsServedForItsRevisionUntilANewerOne) {
+  GatedSession g;
+  g.gate->setOpen(true);
+  ASSERT_EQ(g.status(ImageKind::Level0, 0), S::Ready);
+  ASSERT_EQ(g.status(ImageKind::Diagram, 0), S::Ready);
+  g.gate->setOpen(false);
+  const int begun = g.gate->waitBegunOver(-1);
+  const uint64_t r1 = g.move(1.0);
+  g.gate->waitBegunOver(begun);  // level 0 of r1 is at the gate: no diagram of r1 can begin
+  const ImageAnswer d0 = g.session->image(ImageKind::Diagram, 0, 20s);
+  EXPECT_EQ(d0.status, S::Ready) << d0.error;
+  EXPECT_EQ(d0.revision, 0u);
+  EXPECT_EQ(d0.png.substr(1, 3), "PNG");
+  g.gate->setOpen(true);
+  EXPECT_EQ(g.status(ImageKind::Diagram, r1), S::Ready);
+  EXPECT_EQ(g.status(ImageKind::Diagram, 0), S::Stale);
+}
+
 TEST(PlaceSession, ARevisionWhoseLevel0NeverStartedIsStaleAtOnce) {
   GatedSession g;
   g.gate->setOpen(true);
