@@ -24,7 +24,7 @@ class RadianceField : public Field {
   // Deterministic (no randomness): `seed` and `lambda` are unused.
   void query(std::span<const FieldRay> rays, std::span<const SampledWavelengths> lambda,
              std::span<FieldSample> out, uint64_t seed) const override;
-  // With previewMarch: about 2x cheaper; colour and opacity off by 0.0005 on average, up to 0.06
+  // With previewMarch: about 3x cheaper; colour and opacity off by 0.0005 on average, up to 0.06
   // on rays that graze a hard edge, and depth within one cell (tests/radiance).
   void queryPreview(std::span<const FieldRay> rays, std::span<const SampledWavelengths> lambda,
                     std::span<FieldSample> out, uint64_t seed) const override;
