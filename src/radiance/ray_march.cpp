@@ -215,12 +215,13 @@ RadianceSample marchRayGradT(const VoxelGrid& grid, const OccupancyGrid& occ, co
   samples.clear();
   float T = 1.0f, depth = 0.0f;
   Vec3 rgb(0.0f);
+  const SampleAlpha alphaOf(grid, r.step);
   forEachSample(grid, occ, r, jitter, [&](float t, uint32_t base, const Vec3& f) {
     float w[8];
     trilinearWeights(f, w);
     Vec3 c;
     float raw = sampleRaw<D>(grid, cn, base, w, sh, c);
-    float alpha = 1.0f - std::exp(-grid.densityScale * grid.act(raw) * r.step);
+    float alpha = alphaOf(raw);
     samples.push_back({base, f, alpha, T, grid.densityScale * grid.actDerivative(raw), c});
     float wt = T * alpha;
     rgb += wt * c;
