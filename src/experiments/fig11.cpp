@@ -119,10 +119,7 @@ class Fig11Run {
     ViewResult rec = renderView(*camera, in_.camera.sensor, *dm_.mla, *dm_.panel, dm_.area, vs);
     v.displayInView = rec.stats.displayInView();
     v.reconstructionSeconds = rec.stats.seconds;
-    ReferenceSettings rs;
-    rs.spp = s_.referenceSpp;
-    rs.sppKey = "reference_spp";
-    rs.seed = s_.seed;
+    ReferenceSettings rs = referenceSettings(s_.seed);
     rs.depth = s_.depthError;
     ViewResult ref = renderReference(*in_.field.field, in_.fieldToDisplay, *camera, in_.camera.sensor, rs);
     const ReferenceDepth refDepth = takeDepthChannels(ref.image);  // the reference images stay RGB
@@ -149,6 +146,15 @@ class Fig11Run {
   }
 
  private:
+  // The references' sample count, named as the user gives it (reference_spp).
+  ReferenceSettings referenceSettings(uint64_t seed) const {
+    ReferenceSettings rs;
+    rs.spp = s_.referenceSpp;
+    rs.sppKey = "reference_spp";
+    rs.seed = seed;
+    return rs;
+  }
+
   // The view against the band-limited reference: metrics, and error against depth.
   void compareWithBandLimited(Fig11View& v, const PoseImages& img, const Image& limited, const ReferenceDepth& depth,
                               const PixelMask& mask, const CameraModel& camera) {
@@ -185,10 +191,7 @@ class Fig11Run {
   // seed) for the noise floor; the run's own view is the full chain when it is one.
   PoseBudget poseBudgetOf(const Fig11View& v, const CameraModel& camera, const Image& rec, const PoseImages& img,
                           const PixelMask& mask, const Image& limited) {
-    ReferenceSettings rs;
-    rs.spp = s_.referenceSpp;
-    rs.sppKey = "reference_spp";
-    rs.seed = s_.seed + 1;
+    ReferenceSettings rs = referenceSettings(s_.seed + 1);
     rs.progress = false;
     const Image second = renderReference(*in_.field.field, in_.fieldToDisplay, camera, in_.camera.sensor, rs).image;
     const Image secondExposed = scaledImage(second, refToCdM2_ * img.exposure);
