@@ -72,6 +72,18 @@ struct GatedSession {
     return session->putState(R"({"placement": {"translate_mm": [0, 0, )" + std::to_string(tz) + "]}}")["revision"];
   }
   ImageAnswer::Status status(ImageKind k, uint64_t rev) { return session->image(k, rev, 20s).status; }
+  // Revision 0 shown whole (level 0 and diagram), then a move whose level 0 waits at the shut
+  // gate; the move's revision.
+  uint64_t showThenHoldAMove(double tz) {
+    gate->setOpen(true);
+    EXPECT_EQ(status(ImageKind::Level0, 0), ImageAnswer::Status::Ready);
+    EXPECT_EQ(status(ImageKind::Diagram, 0), ImageAnswer::Status::Ready);
+    gate->setOpen(false);
+    const int begun = gate->waitBegunOver(-1);
+    const uint64_t r = move(tz);
+    gate->waitBegunOver(begun);
+    return r;
+  }
 };
 
 using S = ImageAnswer::Status;
@@ -99,13 +111,7 @@ TEST(PlaceSession, ALevel0UnderWayIsFinishedAndServedAfterTheStateMovesOn) {
 // like level 0: still served once the state has moved on, until a newer diagram replaces it.
 TEST(PlaceSession, AFinishedDiagramIsServedForItsRevisionUntilANewerOne) {
   GatedSession g;
-  g.gate->setOpen(true);
-  ASSERT_EQ(g.status(ImageKind::Level0, 0), S::Ready);
-  ASSERT_EQ(g.status(ImageKind::Diagram, 0), S::Ready);
-  g.gate->setOpen(false);
-  const int begun = g.gate->waitBegunOver(-1);
-  const uint64_t r1 = g.move(1.0);
-  g.gate->waitBegunOver(begun);  // level 0 of r1 is at the gate: no diagram of r1 can begin
+  const uint64_t r1 = g.showThenHoldAMove(1.0);  // no diagram of r1 can begin
   const ImageAnswer d0 = g.session->image(ImageKind::Diagram, 0, 20s);
   EXPECT_EQ(d0.status, S::Ready) << d0.error;
   EXPECT_EQ(d0.revision, 0u);
@@ -117,13 +123,7 @@ TEST(PlaceSession, AFinishedDiagramIsServedForItsRevisionUntilANewerOne) {
 
 TEST(PlaceSession, ARevisionWhoseLevel0NeverStartedIsStaleAtOnce) {
   GatedSession g;
-  g.gate->setOpen(true);
-  ASSERT_EQ(g.status(ImageKind::Level0, 0), S::Ready);
-  ASSERT_EQ(g.status(ImageKind::Diagram, 0), S::Ready);
-  g.gate->setOpen(false);
-  const int begun = g.gate->waitBegunOver(-1);
-  const uint64_t r1 = g.move(1.0);
-  g.gate->waitBegunOver(begun);  // level 0 of r1 is at the gate
+  const uint64_t r1 = g.showThenHoldAMove(1.0);
   const uint64_t r2 = g.move(2.0), r3 = g.move(3.0);
   EXPECT_EQ(g.status(ImageKind::Level0, r2), S::Stale);  // superseded before it began
   g.gate->setOpen(true);
