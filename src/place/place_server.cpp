@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/output_file.h"
 #include "place/place_jobs.h"
+#include "place/place_live.h"
 #include "place/place_session.h"
 
 namespace inim {
@@ -130,6 +131,8 @@ Answer imageAnswer(const ImageAnswer& a, int level) {
   return r;
 }
 
+Answer forbidden() { return error(403, "forbidden: open the URL inim place printed (it carries the access token)"); }
+
 Answer staticFile(const std::string& name, const std::string& type) {
   const std::string body = readFile(dataPath("web/place/" + name));
   if (body.empty()) return error(404, "web/place/" + name + " is missing");
@@ -145,7 +148,9 @@ PlaceServer::PlaceServer(PlaceSession& session, const PlaceServerOptions& option
                                ? "[" + options.host + "]" : options.host;
   const std::string ports = host + ":" + std::to_string(options.port);
   const char* opts[] = {"listening_ports", ports.c_str(), "num_threads", "16", "request_timeout_ms", "120000",
-                        "enable_keep_alive", "yes", "tcp_nodelay", "1", nullptr};
+                        "enable_keep_alive", "yes", "tcp_nodelay", "1",
+                        // An idle live channel is pinged, not closed.
+                        "websocket_timeout_ms", "30000", "enable_websocket_ping_pong", "yes", nullptr};
   mg_callbacks callbacks{};
   ctx_ = mg_start(&callbacks, this, opts);
   if (!ctx_) {
@@ -153,6 +158,8 @@ PlaceServer::PlaceServer(PlaceSession& session, const PlaceServerOptions& option
     throw InputError("", "--port", ports, "an address and port this machine can listen on (free, permitted)");
   }
   mg_set_request_handler(ctx_, "/", &PlaceServer::handleRequest, this);
+  mg_set_websocket_handler(ctx_, "/api/live", &PlaceServer::liveConnect, &PlaceServer::liveReady,
+                           &PlaceServer::liveData, &PlaceServer::liveClose, this);
   mg_server_port sp[4];
   const int n = mg_get_server_ports(ctx_, 4, sp);
   port_ = n > 0 ? sp[0].port : options.port;
@@ -171,20 +178,59 @@ std::string PlaceServer::url() const {
 
 int PlaceServer::handleRequest(mg_connection* c, void* self) { return static_cast<PlaceServer*>(self)->handle(c); }
 
-int PlaceServer::handle(mg_connection* c) {
-  const mg_request_info* ri = mg_get_request_info(c);
-  const std::string method = ri->request_method ? ri->request_method : "", path = ri->local_uri ? ri->local_uri : "";
-  // Access: the token as query parameter, header or the page's cookie.
-  std::string given = queryVar(ri, "token");
+// Access: the token as query parameter, header or (for plain requests) the page's cookie. The
+// live channel takes no cookie: a WebSocket handshake is not bound to its origin as a fetch is.
+bool PlaceServer::allowed(const mg_connection* c, bool cookie) const {
+  std::string given = queryVar(mg_get_request_info(c), "token");
   if (given.empty() && mg_get_header(c, "X-Inim-Token")) given = mg_get_header(c, "X-Inim-Token");
-  if (given.empty() && mg_get_header(c, "Cookie")) {
+  if (cookie && given.empty() && mg_get_header(c, "Cookie")) {
     char buf[128];
     const int n = mg_get_cookie(mg_get_header(c, "Cookie"), "inim_token", buf, sizeof buf);
     if (n > 0) given.assign(buf, size_t(n));
   }
+  return constantTimeEqual(given, token_);
+}
+
+// The live channel (place/place_live.h): one LiveChannel per WebSocket, kept as the
+// connection's user data from the handshake to the close.
+int PlaceServer::liveConnect(const mg_connection* c, void* self) {
+  if (static_cast<PlaceServer*>(self)->allowed(c, false)) return 0;
+  // civetweb sends nothing for a refused handshake: the 403 is this handler's answer.
+  send(const_cast<mg_connection*>(c), forbidden());
+  return 1;
+}
+
+void PlaceServer::liveReady(mg_connection* c, void* self) {
+  auto* server = static_cast<PlaceServer*>(self);
+  auto write = [c](bool binary, const std::string& bytes) {
+    mg_lock_connection(c);
+    mg_websocket_write(c, binary ? MG_WEBSOCKET_OPCODE_BINARY : MG_WEBSOCKET_OPCODE_TEXT, bytes.data(), bytes.size());
+    mg_unlock_connection(c);
+  };
+  mg_set_user_connection_data(c, new LiveChannel(server->session_, write, server->options_.maxBodyBytes,
+                                                 std::chrono::milliseconds(server->options_.imageTimeoutMs)));
+}
+
+int PlaceServer::liveData(mg_connection* c, int bits, char* data, size_t size, void*) {
+  auto* channel = static_cast<LiveChannel*>(mg_get_user_connection_data(c));
+  const int opcode = bits & 0xf;
+  if (opcode == MG_WEBSOCKET_OPCODE_CONNECTION_CLOSE) return 0;
+  if (!channel || opcode == MG_WEBSOCKET_OPCODE_PING || opcode == MG_WEBSOCKET_OPCODE_PONG) return 1;
+  if (opcode == MG_WEBSOCKET_OPCODE_TEXT) channel->onText(std::string(data, size));
+  else channel->onBinary();
+  return 1;
+}
+
+void PlaceServer::liveClose(const mg_connection* c, void*) {
+  delete static_cast<LiveChannel*>(mg_get_user_connection_data(c));
+}
+
+int PlaceServer::handle(mg_connection* c) {
+  const mg_request_info* ri = mg_get_request_info(c);
+  const std::string method = ri->request_method ? ri->request_method : "", path = ri->local_uri ? ri->local_uri : "";
   Answer a;
-  if (!constantTimeEqual(given, token_)) {
-    a = error(403, "forbidden: open the URL inim place printed (it carries the access token)");
+  if (!allowed(c, true)) {
+    a = forbidden();
     send(c, a);
     return a.status;
   }

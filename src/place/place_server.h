@@ -1,6 +1,7 @@
 #pragma once
 // The placement page's HTTP server (docs/place-api.md) on civetweb: the page's files from
-// web/place/ under the data folder, the JSON API over a PlaceSession, and access by token.
+// web/place/ under the data folder, the JSON API over a PlaceSession, the live channel (a
+// WebSocket, place/place_live.h), and access by token.
 // civetweb parses HTTP; this file only routes, checks and answers.
 //
 //   PlaceServer server(session, {"127.0.0.1", 0});
@@ -45,6 +46,11 @@ class PlaceServer {
  private:
   static int handleRequest(mg_connection* c, void* self);
   int handle(mg_connection* c);
+  bool allowed(const mg_connection* c, bool cookie) const;
+  static int liveConnect(const mg_connection* c, void* self);
+  static void liveReady(mg_connection* c, void* self);
+  static int liveData(mg_connection* c, int bits, char* data, size_t size, void* self);
+  static void liveClose(const mg_connection* c, void* self);
 
   PlaceSession& session_;
   PlaceServerOptions options_;

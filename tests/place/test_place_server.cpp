@@ -102,6 +102,12 @@ TEST_F(PlaceServerTest, EveryRequestWithoutTheTokenIsForbidden) {
         << target;
     EXPECT_EQ(request(port, "GET", target, "", "Cookie: inim_token=" + server_->token() + "x\r\n").status, 403) << target;
   }
+  // The live channel's handshake: the token in its address only (a cookie is not enough).
+  const std::string upgrade = "Upgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Version: 13\r\n"
+                              "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n";
+  EXPECT_EQ(request(port, "GET", "/api/live", "", upgrade).status, 403);
+  EXPECT_EQ(request(port, "GET", "/api/live?token=0123", "", upgrade).status, 403);
+  EXPECT_EQ(request(port, "GET", "/api/live", "", upgrade + "Cookie: inim_token=" + server_->token() + "\r\n").status, 403);
   const uint64_t before = revision();
   EXPECT_EQ(request(port, "PUT", "/api/state", R"({"vcp_mm": 50})").status, 403);
   EXPECT_EQ(revision(), before);  // and nothing changed

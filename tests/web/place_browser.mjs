@@ -304,6 +304,26 @@ async function checkFieldMoves(page) {
   pass(`moving the field 4 mm in z changed the red lenslets (${before.red.length} -> ${after.red.length})`);
 }
 
+// Changes go over the live channel (a WebSocket); closed, the page carries on over HTTP and
+// opens it again.
+async function checkLiveChannel(page, geo) {
+  const live = () => page.evaluate(() => ({...window.inimLive}));
+  check((await live()).open, 'the live channel (WebSocket /api/live) is not open');
+  const before = await live();
+  await nudgeRange(page, 'tz', 1);
+  await settle(page, 'tz +1 mm over the live channel');
+  check((await live()).httpChanges === before.httpChanges, 'a change went over HTTP while the live channel was open');
+  await page.evaluate(() => window.inimLive.close());
+  await page.waitForFunction(() => !window.inimLive.open, {timeout: WAIT_MS, polling: 20});
+  await nudgeRange(page, 'tz', -1);
+  await settle(page, 'tz -1 mm with the live channel closed');
+  check((await live()).httpChanges > before.httpChanges, 'with the live channel closed, the change did not go over HTTP');
+  await checkLevel0(page, geo);
+  await page.waitForFunction(() => window.inimLive.open, {timeout: WAIT_MS, polling: 20})
+    .catch(() => { throw new TestFailure('the live channel did not open again after a change'); });
+  pass('changes go over the live channel; closed, over HTTP, and it opens again');
+}
+
 async function waitDiagram(page) {
   await page.waitForFunction(() => window.inimDiagram.revision === window.inimSync.revision,
                              {timeout: WAIT_MS, polling: 50})
@@ -503,11 +523,14 @@ async function measureLatency(page, api, outDir) {
   await settle(page, 'before the drag');
   await page.evaluate(() => { window.inimLatency = []; window.inimServerMs = []; });
   const rev0 = (await api.get('/api/state')).revision;
+  const http0 = await page.evaluate(() => window.inimLive.httpChanges);
   const t0 = Date.now();
   await dragTz(page);
   await settle(page, 'after the drag');
   const seconds = (Date.now() - t0) / 1000;
-  const {latency, serverMs} = await page.evaluate(() => ({latency: window.inimLatency, serverMs: window.inimServerMs}));
+  const {latency, serverMs, live} = await page.evaluate(
+      () => ({latency: window.inimLatency, serverMs: window.inimServerMs, live: {...window.inimLive}}));
+  check(live.open && live.httpChanges === http0, 'the drag did not go over the live channel alone');
   const revisions = (await api.get('/api/state')).revision - rev0;
   const report = {
     browser_input_to_paint: stats(latency),
@@ -573,6 +596,7 @@ async function run(args, cleanup) {
   check(await waitDiagram(page) !== diagram0, 'the diagram did not change when the scene moved');
   pass('the diagram follows the placement');
   await checkLevel0(page, geo);
+  await checkLiveChannel(page, geo);
   await checkRejected(page, api);
   await checkHistory(page, api);
   await checkRunFile(page, api, info, args);

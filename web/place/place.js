@@ -23,6 +23,9 @@
  *   window.inimDiagram   {revision} of the diagram shown
  *   window.inimSync      {revision, busy, pending}: the server's revision, a PUT cycle in flight, a change waiting
  *   window.inimSettled() true when no change waits and the current revision's level 0 is painted
+ *   window.inimLive      {open, httpChanges, close()}: whether changes go over the live channel (a
+ *                        WebSocket), how many went over HTTP; close() closes the channel, the page
+ *                        carries on over HTTP and opens it again at a change 2 s after it last tried
  *   window.inimJobs      {id: last status}; window.inimLastJob
  */
 (() => {
@@ -102,6 +105,63 @@
     img.dataset.url = url;
     if (old) URL.revokeObjectURL(old);
     return true;
+  }
+
+  // ---------------------------------------------------------------- the live channel
+
+  // State changes go over one WebSocket (/api/live) while it is open: the server answers each
+  // with the new state and pushes that revision's level 0 once it is ready, two fetches fewer per
+  // change on a main thread busy with the drag. Without it (refused, closed) changes go over HTTP.
+  const live = {ws: null, open: false, waiting: [], triedAt: -Infinity};
+  window.inimLive = {open: false, httpChanges: 0, close: () => live.ws && live.ws.close()};
+
+  function openLive() {
+    if (live.ws || !window.WebSocket || performance.now() - live.triedAt < 2000) return;
+    live.triedAt = performance.now();
+    const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
+    const ws = new WebSocket(`${scheme}//${location.host}/api/live?token=${encodeURIComponent(TOKEN)}`);
+    ws.binaryType = 'arraybuffer';
+    live.ws = ws;
+    ws.onopen = () => { live.open = window.inimLive.open = true; };
+    ws.onmessage = (ev) => onLiveMessage(ev.data);
+    ws.onclose = () => {
+      live.ws = null;
+      live.open = window.inimLive.open = false;
+      const waiting = live.waiting;
+      live.waiting = [];
+      waiting.forEach((w) => w.fallback());
+    };
+  }
+
+  // A state patch over the live channel, answered as requestJson answers (with `pushed`: its
+  // level 0 will come by itself). A patch whose answer a closing channel took is sent again over
+  // HTTP: a patch sets values, so applying it twice is applying it once.
+  function livePut(patch) {
+    return new Promise((resolve, reject) => {
+      live.waiting.push({resolve, fallback: () => requestJson('/api/state', 'PUT', patch).then(resolve, reject)});
+      live.ws.send(JSON.stringify(patch));
+    });
+  }
+
+  function onLiveMessage(data) {
+    if (typeof data === 'string') {
+      let m;
+      try { m = JSON.parse(data); } catch (e) { m = {error: 'an unreadable answer on the live channel', status: 500}; }
+      const w = live.waiting.shift();
+      if (w) w.resolve(m.state ? {status: 200, ok: true, data: m.state, pushed: true} : {status: m.status || 500, ok: false, data: m});
+      return;
+    }
+    const a = liveImage(data);
+    if (a.error) showError(new Error(`level 0: ${a.error}`));
+    else showLevel0Image(a).catch(showError);
+  }
+
+  // A binary frame: the header's length (4 bytes, big-endian), the header (JSON), the PNG.
+  function liveImage(buf) {
+    const n = new DataView(buf).getUint32(0);
+    const h = JSON.parse(new TextDecoder().decode(new Uint8Array(buf, 4, n)));
+    return {blob: new Blob([new Uint8Array(buf, 4 + n)], {type: 'image/png'}), revision: Number(h.revision),
+            level: 0, serverMs: Number(h.server_ms), counts: h.counts || null, error: h.error};
   }
 
   // ---------------------------------------------------------------- status line
@@ -319,9 +379,9 @@
 
   // ---------------------------------------------------------------- sending changes
 
-  // One PUT at a time; changes made meanwhile merge into one pending
-  // patch, so dragging never queues stale states. Each revision's level 0 is fetched beside
-  // (putAndShow), and painted unless a newer one was painted first.
+  // One change at a time (over the live channel, or a PUT); changes made meanwhile merge into one
+  // pending patch, so dragging never queues stale states. Each revision's level 0 comes beside
+  // (pushed, or fetched: putAndShow), and is painted unless a newer one was painted first.
   const sync = {pending: null, busy: false, flushQueued: false, revision: -1};
   const inputs = [];                 // [{seq, t0}] not yet painted
   const revisionInputs = new Map();  // revision -> last input seq it includes
@@ -335,6 +395,7 @@
   }
 
   function change(patch, t0) {
+    openLive();  // (again, when it closed)
     inputs.push({seq: ++inputSeq, t0});
     sync.pending = mergePatch(sync.pending || {}, patch);
     publishSync();
@@ -369,7 +430,7 @@
   }
 
   async function putAndShow(patch, upTo) {
-    const r = await requestJson('/api/state', 'PUT', patch);
+    const r = live.open ? await livePut(patch) : await requestJson('/api/state', 'PUT', patch);
     if (r.status === 400) {
       // Coalescing may have merged valid changes with the refused one: keep those.
       const message = Object.keys(patch).length > 1 ? await putKeyByKey(patch) : errorText(r);
@@ -383,7 +444,9 @@
     if ($('status').classList.contains('error')) setStatus('ok', 'ok');
     // Not awaited: the next change goes out while this one renders. The server finishes a level 0
     // it has started and serves it, so dragging shows frames and each input waits for at most
-    // the render under way plus its own.
+    // the render under way plus its own. Over the live channel it comes by itself.
+    if (r.pushed) return;
+    window.inimLive.httpChanges++;
     showLevel0(sync.revision).catch(showError);
   }
 
@@ -441,7 +504,11 @@
 
   async function showLevel0(rev) {
     const a = await fetchImage(`/api/preview?level=0&revision=${rev}`);
-    if (!a || a.revision <= shown.level0) return;
+    if (a) await showLevel0Image(a);
+  }
+
+  async function showLevel0Image(a) {
+    if (a.revision <= shown.level0) return;
     if (!(await showBlob($('preview0'), a.blob, () => a.revision > shown.level0))) return;
     shown.level0 = a.revision;
     if (shown.level1 !== a.revision) $('preview1').hidden = true;
@@ -748,6 +815,7 @@
     if (ri.status === 403 || rs.status === 403) throw new Error('no access: open the URL inim place printed (with its token)');
     if (!ri.ok) throw new Error(`GET /api/info: ${errorText(ri)}`);
     if (!rs.ok) throw new Error(`GET /api/state: ${errorText(rs)}`);
+    openLive();
     info = ri.data;
     model = normalise(rs.data);
     defaults = normalise(info.defaults || rs.data);
