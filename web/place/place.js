@@ -25,7 +25,8 @@
  *   window.inimSettled() true when no change waits and the current revision's level 0 is painted
  *   window.inimLive      {open, httpChanges, close()}: whether changes go over the live channel (a
  *                        WebSocket), how many went over HTTP; close() closes the channel, the page
- *                        carries on over HTTP and opens it again at a change 2 s after it last tried
+ *                        carries on over HTTP and opens it again at the next change (2 s after a
+ *                        refused attempt)
  *   window.inimJobs      {id: last status}; window.inimLastJob
  */
 (() => {
@@ -112,12 +113,11 @@
   // State changes go over one WebSocket (/api/live) while it is open: the server answers each
   // with the new state and pushes that revision's level 0 once it is ready, two fetches fewer per
   // change on a main thread busy with the drag. Without it (refused, closed) changes go over HTTP.
-  const live = {ws: null, open: false, waiting: [], triedAt: -Infinity};
+  const live = {ws: null, open: false, waiting: [], failedAt: -Infinity};
   window.inimLive = {open: false, httpChanges: 0, close: () => live.ws && live.ws.close()};
 
   function openLive() {
-    if (live.ws || !window.WebSocket || performance.now() - live.triedAt < 2000) return;
-    live.triedAt = performance.now();
+    if (live.ws || !window.WebSocket || performance.now() - live.failedAt < 2000) return;
     const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
     const ws = new WebSocket(`${scheme}//${location.host}/api/live?token=${encodeURIComponent(TOKEN)}`);
     ws.binaryType = 'arraybuffer';
@@ -125,6 +125,7 @@
     ws.onopen = () => { live.open = window.inimLive.open = true; };
     ws.onmessage = (ev) => onLiveMessage(ev.data);
     ws.onclose = () => {
+      if (!live.open) live.failedAt = performance.now();  // refused: not again for 2 s
       live.ws = null;
       live.open = window.inimLive.open = false;
       const waiting = live.waiting;
