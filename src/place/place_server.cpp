@@ -67,12 +67,16 @@ const char* statusText(int s) {
 Answer json(const Json& j, int status = 200) { return {status, "application/json", j.dump(), ""}; }
 Answer error(int status, const std::string& message) { return json({{"error", message}}, status); }
 
-// Head and body in one write: with the connection kept alive and TCP_NODELAY, a second small
-// write would go out as its own segment.
+// Head and body in one write: with TCP_NODELAY (which the live channel needs: without it a
+// message waited for the page's delayed ACK, about 40 ms), a second write is its own segment.
+// Each answer closes its connection: a client's kept-alive socket that the server closed as idle
+// fails the next request in clients that do not retry (Node's fetch did), and the requests left
+// on HTTP are few since the live channel carries the drag.
 void send(mg_connection* c, const Answer& a) {
   std::string out = "HTTP/1.1 " + std::to_string(a.status) + " " + statusText(a.status) +
                     "\r\nContent-Type: " + a.type + "\r\nContent-Length: " + std::to_string(a.body.size()) +
-                    "\r\nCache-Control: no-store\r\nX-Content-Type-Options: nosniff\r\n" + a.headers + "\r\n";
+                    "\r\nCache-Control: no-store\r\nX-Content-Type-Options: nosniff\r\n" + a.headers +
+                    "Connection: close\r\n\r\n";
   out += a.body;
   mg_write(c, out.data(), out.size());
 }
@@ -148,7 +152,7 @@ PlaceServer::PlaceServer(PlaceSession& session, const PlaceServerOptions& option
                                ? "[" + options.host + "]" : options.host;
   const std::string ports = host + ":" + std::to_string(options.port);
   const char* opts[] = {"listening_ports", ports.c_str(), "num_threads", "16", "request_timeout_ms", "120000",
-                        "enable_keep_alive", "yes", "tcp_nodelay", "1",
+                        "tcp_nodelay", "1",
                         // An idle live channel is pinged, not closed.
                         "websocket_timeout_ms", "30000", "enable_websocket_ping_pong", "yes", nullptr};
   mg_callbacks callbacks{};
