@@ -16,7 +16,6 @@ namespace inim {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-using namespace std::chrono_literals;
 
 namespace {
 
@@ -247,12 +246,13 @@ void PlaceSession::diagramLoop() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (!stop_) {
     const Snapshot snap = current_;
-    if (diagramOf(snap.state.revision) || !level0Of(snap.state.revision)) {
+    const Rendered* level0 = level0Of(snap.state.revision);
+    if (diagramOf(snap.state.revision) || !level0) {
       changed_.wait(lock);
       continue;
     }
     diagramInFlight_ = snap.state.revision;
-    const auto hits = level0Of(snap.state.revision)->lensletHits;
+    const auto hits = level0->lensletHits;
     lock.unlock();
     Rendered r;
     bool cancelled = false;
