@@ -13,6 +13,7 @@
 #include "core/json_config.h"
 #include "core/output_file.h"
 #include "fixtures.h"
+#include "place/served_session.h"
 #include "place/place_live.h"
 #include "place/place_server.h"
 #include "place/place_session.h"
@@ -88,28 +89,13 @@ LiveFrame parseFrame(const std::string& f) {
 
 class PlaceLiveTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    out_ = new fixtures::ScratchDir("place_live");
-    PlaceOptions o;
-    o.fieldPath = dataPath("scenes/test/depth-ramp.json");
-    o.outDir = out_->path("out");
-    session_ = new PlaceSession(o);
-    server_ = new PlaceServer(*session_, {});
-  }
-  static void TearDownTestSuite() {
-    delete server_;
-    delete session_;
-    delete out_;
-  }
-  static std::string livePath() { return "/api/live?token=" + server_->token(); }
-  static uint64_t revision() { return session_->state()["revision"].get<uint64_t>(); }
-  static fixtures::ScratchDir* out_;
-  static PlaceSession* session_;
-  static PlaceServer* server_;
+  static void SetUpTestSuite() { served_ = new fixtures::ServedSession("place_live"); }
+  static void TearDownTestSuite() { delete served_; }
+  static std::string livePath() { return "/api/live?token=" + served_->server.token(); }
+  static uint64_t revision() { return served_->session.state()["revision"].get<uint64_t>(); }
+  static fixtures::ServedSession* served_;
 };
-fixtures::ScratchDir* PlaceLiveTest::out_ = nullptr;
-PlaceSession* PlaceLiveTest::session_ = nullptr;
-PlaceServer* PlaceLiveTest::server_ = nullptr;
+fixtures::ServedSession* PlaceLiveTest::served_ = nullptr;
 
 }  // namespace
 
@@ -128,15 +114,15 @@ TEST(LiveImageFrame, HeaderLengthHeaderThenPng) {
 
 TEST_F(PlaceLiveTest, TheHandshakeNeedsTheToken) {
   for (const std::string& path : {std::string("/api/live"), "/api/live?token=" + std::string(32, '0')}) {
-    LiveClient ws(server_->port(), path);
+    LiveClient ws(served_->server.port(), path);
     EXPECT_FALSE(ws.connected()) << path;  // the 403 itself: test_place_server.cpp
   }
-  LiveClient ws(server_->port(), livePath());
+  LiveClient ws(served_->server.port(), livePath());
   EXPECT_TRUE(ws.connected()) << ws.error();
 }
 
 TEST_F(PlaceLiveTest, EachChangeIsAnsweredThenItsLevel0Pushed) {
-  LiveClient ws(server_->port(), livePath());
+  LiveClient ws(served_->server.port(), livePath());
   ASSERT_TRUE(ws.connected()) << ws.error();
   const uint64_t r0 = revision();
   ws.send(R"({"vcp_mm": 61})");
@@ -152,13 +138,13 @@ TEST_F(PlaceLiveTest, EachChangeIsAnsweredThenItsLevel0Pushed) {
   EXPECT_GT(f.header["server_ms"].get<double>(), 0.0);
   EXPECT_GT(f.header["counts"]["on_plane"].get<int>(), 0);
   // The image GET /api/preview?level=0 serves for that revision, byte for byte.
-  EXPECT_EQ(f.png, session_->image(ImageKind::Level0, r0 + 1, std::chrono::seconds(60)).png);
+  EXPECT_EQ(f.png, served_->session.image(ImageKind::Level0, r0 + 1, std::chrono::seconds(60)).png);
 }
 
 // A drag: changes faster than level 0 renders. Every change is answered, in order; frames in
 // between may be skipped, but the last revision's level 0 always comes.
 TEST_F(PlaceLiveTest, AfterABurstOfChangesTheNewestLevel0Comes) {
-  LiveClient ws(server_->port(), livePath());
+  LiveClient ws(served_->server.port(), livePath());
   ASSERT_TRUE(ws.connected()) << ws.error();
   const uint64_t r0 = revision();
   for (int k = 1; k <= 6; ++k) ws.send(R"({"placement": {"translate_mm": [0, 0, )" + std::to_string(k) + "]}}");
@@ -179,9 +165,9 @@ TEST_F(PlaceLiveTest, AfterABurstOfChangesTheNewestLevel0Comes) {
 }
 
 TEST_F(PlaceLiveTest, BadMessagesAre400AndChangeNothing) {
-  LiveClient ws(server_->port(), livePath());
+  LiveClient ws(served_->server.port(), livePath());
   ASSERT_TRUE(ws.connected()) << ws.error();
-  const Json before = session_->state();
+  const Json before = served_->session.state();
   for (const std::string& body : {std::string("{\"vcp_mm\": "), std::string("{\"vcp_mm\": 1e400}"),
                                  std::string("{\"vcp_mm\": 1e9}"), std::string("[]"),
                                  "{\"vcp_mm\": 1, \"pad\": \"" + std::string(1 << 20, 'x') + "\"}"}) {
@@ -192,7 +178,7 @@ TEST_F(PlaceLiveTest, BadMessagesAre400AndChangeNothing) {
   }
   ws.send(R"({"vcp_mm": 62})", true);  // binary
   EXPECT_EQ(ws.nextText()["status"], 400);
-  EXPECT_EQ(session_->state(), before);
+  EXPECT_EQ(served_->session.state(), before);
   ws.send(R"({"vcp_mm": 62})");  // the channel still works
   EXPECT_EQ(ws.nextText()["state"]["vcp_mm"], 62.0);
 }

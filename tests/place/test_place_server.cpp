@@ -12,6 +12,7 @@
 #include "core/json_config.h"
 #include "core/output_file.h"
 #include "fixtures.h"
+#include "place/served_session.h"
 #include "place/place_server.h"
 #include "place/place_session.h"
 
@@ -52,25 +53,14 @@ Http request(int port, const std::string& method, const std::string& target, con
 
 class PlaceServerTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    out_ = new fixtures::ScratchDir("place_server");
-    PlaceOptions o;
-    o.fieldPath = dataPath("scenes/test/depth-ramp.json");
-    o.outDir = out_->path("out");
-    session_ = new PlaceSession(o);
-    server_ = new PlaceServer(*session_, {});
-  }
-  static void TearDownTestSuite() {
-    delete server_;
-    delete session_;
-    delete out_;
-  }
-  static std::string tok() { return "token=" + server_->token(); }
+  static void SetUpTestSuite() { served_ = new fixtures::ServedSession("place_server"); }
+  static void TearDownTestSuite() { delete served_; }
+  static std::string tok() { return "token=" + served_->server.token(); }
   static Http get(const std::string& target) {
-    return request(server_->port(), "GET", target, "", "X-Inim-Token: " + server_->token() + "\r\n");
+    return request(served_->server.port(), "GET", target, "", "X-Inim-Token: " + served_->server.token() + "\r\n");
   }
   static Http send(const std::string& method, const std::string& target, const std::string& body) {
-    return request(server_->port(), method, target, body, "X-Inim-Token: " + server_->token() + "\r\n");
+    return request(served_->server.port(), method, target, body, "X-Inim-Token: " + served_->server.token() + "\r\n");
   }
   static uint64_t revision() { return get("/api/state").json()["revision"].get<uint64_t>(); }
   static Json waitForJob(uint64_t id) {
@@ -81,33 +71,29 @@ class PlaceServerTest : public ::testing::Test {
     }
     return {};
   }
-  static fixtures::ScratchDir* out_;
-  static PlaceSession* session_;
-  static PlaceServer* server_;
+  static fixtures::ServedSession* served_;
 };
-fixtures::ScratchDir* PlaceServerTest::out_ = nullptr;
-PlaceSession* PlaceServerTest::session_ = nullptr;
-PlaceServer* PlaceServerTest::server_ = nullptr;
+fixtures::ServedSession* PlaceServerTest::served_ = nullptr;
 
 }  // namespace
 
 TEST_F(PlaceServerTest, EveryRequestWithoutTheTokenIsForbidden) {
-  const int port = server_->port();
+  const int port = served_->server.port();
   ASSERT_GT(port, 0);
-  EXPECT_EQ(server_->url().rfind("http://127.0.0.1:" + std::to_string(port) + "/?token=", 0), 0u) << server_->url();
+  EXPECT_EQ(served_->server.url().rfind("http://127.0.0.1:" + std::to_string(port) + "/?token=", 0), 0u) << served_->server.url();
   for (const char* target : {"/", "/place.js", "/api/info", "/api/state", "/api/preview?level=0&revision=0",
                              "/api/jobs", "/nowhere"}) {
     EXPECT_EQ(request(port, "GET", target).status, 403) << target;
     EXPECT_EQ(request(port, "GET", std::string(target) + (std::strchr(target, '?') ? "&" : "?") + "token=0123").status, 403)
         << target;
-    EXPECT_EQ(request(port, "GET", target, "", "Cookie: inim_token=" + server_->token() + "x\r\n").status, 403) << target;
+    EXPECT_EQ(request(port, "GET", target, "", "Cookie: inim_token=" + served_->server.token() + "x\r\n").status, 403) << target;
   }
   // The live channel's handshake: the token in its address only (a cookie is not enough).
   const std::string upgrade = "Upgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Version: 13\r\n"
                               "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n";
   EXPECT_EQ(request(port, "GET", "/api/live", "", upgrade).status, 403);
   EXPECT_EQ(request(port, "GET", "/api/live?token=0123", "", upgrade).status, 403);
-  EXPECT_EQ(request(port, "GET", "/api/live", "", upgrade + "Cookie: inim_token=" + server_->token() + "\r\n").status, 403);
+  EXPECT_EQ(request(port, "GET", "/api/live", "", upgrade + "Cookie: inim_token=" + served_->server.token() + "\r\n").status, 403);
   const uint64_t before = revision();
   EXPECT_EQ(request(port, "PUT", "/api/state", R"({"vcp_mm": 50})").status, 403);
   EXPECT_EQ(revision(), before);  // and nothing changed
@@ -117,12 +103,12 @@ TEST_F(PlaceServerTest, EveryRequestWithoutTheTokenIsForbidden) {
 }
 
 TEST_F(PlaceServerTest, ThePageAndItsCookie) {
-  Http page = request(server_->port(), "GET", "/?" + tok());
+  Http page = request(served_->server.port(), "GET", "/?" + tok());
   ASSERT_EQ(page.status, 200) << page.body;
   EXPECT_NE(page.body.find("<html"), std::string::npos);
-  EXPECT_NE(page.headers["Set-Cookie"].find("inim_token=" + server_->token()), std::string::npos);
+  EXPECT_NE(page.headers["Set-Cookie"].find("inim_token=" + served_->server.token()), std::string::npos);
   EXPECT_NE(page.headers["Set-Cookie"].find("HttpOnly"), std::string::npos);
-  EXPECT_EQ(request(server_->port(), "GET", "/place.js", "", "Cookie: inim_token=" + server_->token() + "\r\n").status, 200);
+  EXPECT_EQ(request(served_->server.port(), "GET", "/place.js", "", "Cookie: inim_token=" + served_->server.token() + "\r\n").status, 200);
 }
 
 TEST_F(PlaceServerTest, AStateChangeGivesANewRevisionAndItsPreview) {
@@ -180,21 +166,21 @@ TEST_F(PlaceServerTest, WritesStayInTheOutputFolderAndAreWhole) {
   }
   EXPECT_EQ(send("POST", "/api/write", R"({"what": "everything"})").status, 400);
   EXPECT_EQ(send("POST", "/api/predict", R"({"angle_deg": 90})").status, 400);
-  EXPECT_FALSE(fs::exists(out_->path("escape.json")));
+  EXPECT_FALSE(fs::exists(served_->out.path("escape.json")));
 
   const Http w = send("POST", "/api/write", R"({"what": "run", "name": "placed"})");
   ASSERT_EQ(w.status, 202) << w.body;
   const Json j = waitForJob(w.json()["job"].get<uint64_t>());
   ASSERT_EQ(j["state"], "done") << j.dump();
-  const std::string file = session_->outDir() + "/placed.json";
+  const std::string file = served_->session.outDir() + "/placed.json";
   const RunFile run = loadRunFile(file);
   EXPECT_EQ(*run.vcpMm, get("/api/state").json()["vcp_mm"].get<double>());
 
   // A write that cannot complete (its name is taken by a folder) fails and leaves no temporary.
-  fs::create_directories(session_->outDir() + "/blocked.json");
+  fs::create_directories(served_->session.outDir() + "/blocked.json");
   const Json f = waitForJob(send("POST", "/api/write", R"({"what": "run", "name": "blocked"})").json()["job"].get<uint64_t>());
   EXPECT_EQ(f["state"], "failed");
   EXPECT_FALSE(f["error"].get<std::string>().empty());
-  for (const auto& e : fs::directory_iterator(session_->outDir()))
+  for (const auto& e : fs::directory_iterator(served_->session.outDir()))
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
