@@ -33,11 +33,6 @@ LiveChannel::~LiveChannel() {
   pusher_.join();
 }
 
-void LiveChannel::sendLocked(bool binary, const std::string& bytes) {
-  std::lock_guard<std::mutex> lock(sendMutex_);
-  send_(binary, bytes);
-}
-
 void LiveChannel::onText(const std::string& text) {
   Json answer;
   try {
@@ -49,7 +44,7 @@ void LiveChannel::onText(const std::string& text) {
   } catch (const std::exception& e) {
     answer = {{"error", e.what()}, {"status", 500}};
   }
-  sendLocked(false, answer.dump());
+  send_(false, answer.dump());
   if (!answer.contains("state")) return;
   {  // after the answer, so that the page knows the revision before its image comes
     std::lock_guard<std::mutex> lock(mutex_);
@@ -59,7 +54,7 @@ void LiveChannel::onText(const std::string& text) {
 }
 
 void LiveChannel::onBinary() {
-  sendLocked(false, Json{{"error", "message: a JSON state patch as text expected"}, {"status", 400}}.dump());
+  send_(false, Json{{"error", "message: a JSON state patch as text expected"}, {"status", 400}}.dump());
 }
 
 // Level 0 of `revision`, waited for in short steps so that closing the channel is not held up.
@@ -93,7 +88,7 @@ void LiveChannel::pushLoop() {
     if (a.status == S::Timeout)
       a.status = S::Failed, a.error = "level 0 of revision " + std::to_string(rev) + " was not ready in time";
     lock.unlock();
-    sendLocked(true, liveImageFrame(a));
+    send_(true, liveImageFrame(a));
     lock.lock();
   }
 }

@@ -26,8 +26,9 @@ std::string liveImageFrame(const ImageAnswer& a);
 
 class LiveChannel {
  public:
-  // `send` writes one message (binary or text) to the page; it is called from the caller's
-  // thread (answers) and from the channel's own (images), never from both at once.
+  // `send` writes one message (binary or text) to the page. It is called from the caller's
+  // thread (answers) and from the channel's own (images), so it serialises its writes itself
+  // (the server holds civetweb's connection lock, which civetweb's own pings take too).
   using Send = std::function<void(bool binary, const std::string& bytes)>;
   LiveChannel(PlaceSession& session, Send send, size_t maxMessageBytes, std::chrono::milliseconds imageTimeout);
   ~LiveChannel();  // stops pushing; returns once no send is under way
@@ -40,7 +41,6 @@ class LiveChannel {
   void onBinary();
 
  private:
-  void sendLocked(bool binary, const std::string& bytes);
   void pushLoop();
   ImageAnswer waitForLevel0(uint64_t revision);
 
@@ -48,7 +48,6 @@ class LiveChannel {
   Send send_;
   size_t maxBytes_;
   std::chrono::milliseconds imageTimeout_;
-  std::mutex sendMutex_;  // one message at a time on the socket
   std::mutex mutex_;
   std::condition_variable wake_;
   uint64_t wanted_ = 0, pushed_ = 0;  // revisions: the newest changed here, the newest handled
