@@ -303,6 +303,25 @@ std::array<float, kNumPrimaries> PanelEmitter::boxAveragePx(double u0, double v0
   return out;
 }
 
+// The overlaps of [b0, b1] with a rectangle's side [r0, r1] in each of the tiles t0..t1 (tile
+// size w), kept where positive and inside the panel (index of the pixel < limit); false when
+// there are more than kMaxBoxTiles tiles.
+bool PanelEmitter::sideOverlaps(double b0, double b1, int t0, int t1, int w, float r0, float r1, int pix, int limit,
+                                SideOverlaps& out) {
+  out.n = 0;
+  if (t1 - t0 >= kMaxBoxTiles) return false;
+  for (int t = t0; t <= t1; ++t) {
+    const double o = double(t) * w;
+    const double a = std::min(b1 - o, double(r1)) - std::max(b0 - o, double(r0));
+    const int index = t * w + pix;
+    if (!(a > 0.0) || index >= limit) continue;
+    out.length[out.n] = a;
+    out.index[out.n] = index;
+    ++out.n;
+  }
+  return true;
+}
+
 float PanelEmitter::channelBoxAveragePx(int c, double u0, double v0, double u1, double v1) const {
   const double area = (u1 - u0) * (v1 - v0);
   if (!(area > 0.0)) return channelDrivePx(c, 0.5 * (u0 + u1), 0.5 * (v0 + v1));
@@ -312,6 +331,23 @@ float PanelEmitter::channelBoxAveragePx(int c, double u0, double v0, double u1, 
   double sum = 0.0;
   const int tu0 = int(std::floor(cu0 / tileW_)), tu1 = int(std::floor(cu1 / tileW_));
   const int tv0 = int(std::floor(cv0 / tileH_)), tv1 = int(std::floor(cv1 / tileH_));
+  // One rectangle of the channel per tile (the stripe layouts): its overlap with the box is a
+  // column's length times a row's, each found once (the hot path of the Quadrature estimator).
+  const std::vector<int>& own = channelPolys_[size_t(c)];
+  if (own.size() == 1 && polys_[size_t(own[0])].rect) {
+    const Poly& p = polys_[size_t(own[0])];
+    SideOverlaps cols, rows;
+    if (sideOverlaps(cu0, cu1, tu0, tu1, tileW_, p.u0, p.u1, p.pixU, panelW_, cols) &&
+        sideOverlaps(cv0, cv1, tv0, tv1, tileH_, p.v0, p.v1, p.pixV, panelH_, rows)) {
+      for (int j = 0; j < rows.n; ++j) {
+        const float* row = drive_.data() + size_t(rows.index[j]) * size_t(panelW_) * 3 + size_t(c);
+        double s = 0.0;
+        for (int i = 0; i < cols.n; ++i) s += cols.length[i] * double(row[size_t(cols.index[i]) * 3]);
+        sum += rows.length[j] * s;
+      }
+      return float(sum / area);
+    }
+  }
   for (int tv = tv0; tv <= tv1; ++tv)
     for (int tu = tu0; tu <= tu1; ++tu) {
       const double ou = double(tu) * tileW_, ov = double(tv) * tileH_;

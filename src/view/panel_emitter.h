@@ -141,6 +141,14 @@ class PanelEmitter {
     bool rect = false;       // an axis-aligned rectangle (its bounding box)
   };
   double polyBoxArea(const Poly& p, double u0, double v0, double u1, double v1) const;
+  static constexpr int kMaxBoxTiles = 40;  // per side, for channelBoxAveragePx's stripe path
+  struct SideOverlaps {
+    int n = 0;
+    double length[kMaxBoxTiles];
+    int index[kMaxBoxTiles];  // pixel column or row
+  };
+  static bool sideOverlaps(double b0, double b1, int t0, int t1, int w, float r0, float r1, int pix, int limit,
+                           SideOverlaps& out);
   float angular(float cosTheta) const;
 
   Panel panel_;
