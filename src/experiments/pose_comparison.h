@@ -13,6 +13,7 @@
 #include "core/json_config.h"
 #include "core/pixel_mask.h"
 #include "experiments/fig11_depth.h"
+#include "view/reference_renderer.h"
 #include "view/view_image.h"
 
 namespace inim {
@@ -46,5 +47,16 @@ Json bandLimitJson(const BandLimit& b);  // the filter's parameters, for metrics
 // The reference filtered to what an ideal display of this pitch can show; without depth
 // channels every pixel is taken at the MLA plane.
 Image bandLimitedReference(const Image& ref, const ReferenceDepth& depth, const BandLimit& b);
+
+// The reference with its full samples (s.spp) only where the comparison reads it: the mask's
+// pixels and those the band-limited reference's filter reaches from them (3 sigma at each
+// pixel's depth); the others get s.sppElsewhere samples (a picture; 0: black). Two passes:
+// the mask grown by the filter's reach at the MLA plane, then the pixels a deeper pixel's
+// filter reaches beyond that (s.depth only). A pixel's samples do not depend on the pass, so
+// the compared pixels, and the band-limited reference on the mask, are those of a reference
+// rendered in full, bit for bit. An empty mask: the whole reference in full (nothing is compared).
+ViewResult renderComparedReference(const Field& field, const Transform& fieldToDisplay, const CameraModel& camera,
+                                   const CameraSensor& sensor, const ReferenceSettings& s, const PixelMask& mask,
+                                   const BandLimit& b);
 
 }  // namespace inim

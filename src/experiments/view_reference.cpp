@@ -104,7 +104,11 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
   ref.seed = s.view.seed;
   ref.progress = s.view.progress;
   ref.depth = true;
-  ViewResult refRender = renderReference(*in.field.field, in.placement.toDisplay(), *cs.camera, cs.desc.sensor, ref);
+  const PixelMask mask = displayMask(*cs.camera, r.view.layout.activeArea());
+  const BandLimit band = bandLimitOf(r.view.layout.lensPitchMm, r.view.display.panel.pixelPitchMm, r.view.gapMm,
+                                     cs.pose.distanceMm, *cs.camera);
+  ViewResult refRender =
+      renderComparedReference(*in.field.field, in.placement.toDisplay(), *cs.camera, cs.desc.sensor, ref, mask, band);
   r.referenceSeconds = refRender.stats.seconds;
   const ReferenceDepth depth = takeDepthChannels(refRender.image);
   const double peak = s.emitter.absolute ? r.view.display.panel.peakLuminanceCdM2 : 1.0;
@@ -121,7 +125,6 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
   writeImage(img.recSrgb, out(cs.png));
   writeImage(img.refExposed, out(sibling(s.camera.out, "_reference.exr")));
   writeImage(img.refSrgb, out(sibling(s.camera.out, "_reference.png")));
-  const PixelMask mask = displayMask(*cs.camera, r.view.layout.activeArea());
   if (mask.count() == 0) {  // nothing to compare: the images only
     outputs.commit();
     return r;
@@ -131,8 +134,6 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
   copt.spaceA = copt.spaceB = "srgb";
   r.metrics = compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference", "view");
   r.hasMetrics = true;
-  const BandLimit band = bandLimitOf(r.view.layout.lensPitchMm, r.view.display.panel.pixelPitchMm, r.view.gapMm,
-                                     cs.pose.distanceMm, *cs.camera);
   const Image limited = bandLimitedReference(img.refExposed, depth, band);
   r.bandLimitedMetrics = compareImages(cameraRgbToSrgb(limited, cs.desc.sensor), img.recSrgb, copt, &mask,
                                        "band-limited reference", "view");
@@ -159,6 +160,8 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
     second.seed = ref.seed + 1;
     second.progress = false;
     second.depth = false;
+    second.fullSamples = &mask.on;  // the floor is measured on the mask only
+    second.sppElsewhere = 0;
     const Image secondRef = renderReference(*in.field.field, in.placement.toDisplay(), *cs.camera, cs.desc.sensor, second).image;
     const Image secondExposed = scaledImage(secondRef, refToCdM2 * img.exposure);
     const Image eia = linearEia(*r.view.eia, lowerExtension(s.eiaPath) == ".png", r.view.display.panel);

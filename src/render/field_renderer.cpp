@@ -5,6 +5,7 @@
 #include <climits>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "core/parallel.h"
@@ -47,12 +48,14 @@ class TileRenderer {
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x, ++local) {
         const size_t b = t.pixelStart[local], n = t.pixelStart[local + 1] - b;
+        const int spp = samplesOf(x, y);
+        if (spp == 0) continue;
         PixelRays p;
         p.answers = std::span<const FieldSample>(answers).subspan(b, n);
         p.rays = std::span<const FieldRay>(t.rays).subspan(b, n);
         if (spectral_) p.wavelengths = std::span<const SampledWavelengths>(t.wavelengths).subspan(b, n);
         p.weights = std::span<const float>(t.weights).subspan(b, n);
-        p.spp = settings_.spp;
+        p.spp = spp;
         p.spectral = spectral_;
         p.heroOnly = dispersive_;
         film_.resolvePixel(p, &image.at(x, y, 0));
@@ -61,6 +64,12 @@ class TileRenderer {
   }
 
  private:
+  int samplesOf(int x, int y) const {
+    const std::vector<uint8_t>* full = settings_.fullSamples;
+    if (!full || (*full)[size_t(y) * size_t(camera_.width()) + size_t(x)]) return settings_.spp;
+    return std::min(settings_.sppElsewhere, settings_.spp);
+  }
+
   TileRays cameraRays(const Tile& tile) const {
     const size_t nPix = size_t(tile.x1 - tile.x0) * size_t(tile.y1 - tile.y0);
     const size_t capacity = nPix * size_t(settings_.spp) * size_t(raysPerSample_);
@@ -73,9 +82,10 @@ class TileRenderer {
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
         const uint64_t pixel = uint64_t(y) * uint64_t(camera_.width()) + uint64_t(x);
-        sampler_.pixelSamples(pixel, samples);
+        const int spp = samplesOf(x, y);
+        sampler_.pixelSamples(pixel, std::span<CameraSample>(samples).first(size_t(spp)));
         t.pixelStart.push_back(t.rays.size());
-        for (int si = 0; si < settings_.spp; ++si) {
+        for (int si = 0; si < spp; ++si) {
           const CameraSample& s = samples[size_t(si)];
           const Vec2 position(float(x) + s.pixelOffset.x, float(y) + s.pixelOffset.y);
           for (int k = 0; k < raysPerSample_; ++k) addRay(position, s, pixel, si, k, t);
@@ -155,6 +165,8 @@ FieldRender renderThroughCamera(const Field& field, const CameraModel& camera, c
   const int W = camera.width(), H = camera.height();
   const TileRenderer tiles(field, camera, sampler, film, settings);
   checkRenderSize(W, H, film.channels().size(), settings.spp, settings.sppKey, tiles.raysPerSample());
+  if (settings.fullSamples && settings.fullSamples->size() != size_t(W) * size_t(H))
+    throw std::invalid_argument("renderThroughCamera: the full-sample map is not width x height");
   FieldRender out;
   out.image = Image(W, H, film.channels());
   std::atomic<uint64_t> cameraRays{0}, hitRays{0};

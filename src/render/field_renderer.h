@@ -18,6 +18,7 @@
 // interleaved by k would give each hero wavelength a strided, badly stratified subset.
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "camera/camera_model.h"
 #include "core/image.h"
@@ -40,6 +41,11 @@ struct FieldRenderSettings {
   // False: a dispersive camera's rays are traced at 550 nm, each carrying the whole packet (for
   // a lens whose colour spread is far below a pixel: camera/chromatic_spread.h).
   bool traceDispersion = true;
+  // Where a comparison reads only some pixels: the others (0 in this width x height map) get
+  // sppElsewhere samples, the first of their full set (0: none, the pixel stays 0). A pixel's
+  // samples do not depend on the map, so pixels rendered in several passes are the same.
+  const std::vector<uint8_t>* fullSamples = nullptr;
+  int sppElsewhere = 1;
 };
 
 struct FieldRenderStats {

@@ -157,6 +157,8 @@ ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, 
   fs.raysPerBatch = s.raysPerBatch;
   fs.progress = s.progress;
   fs.progressLabel = "reference";
+  fs.fullSamples = s.fullSamples;
+  fs.sppElsewhere = s.sppElsewhere;
   fs.cameraToField = fieldToDisplay.inverse();
   fs.traceDispersion = s.dispersion == CameraDispersion::Trace ||
                        (s.dispersion == CameraDispersion::Auto && chromaticSpreadPx(camera) > kDispersionThresholdPx);

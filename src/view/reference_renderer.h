@@ -43,6 +43,7 @@
 //   Image img = renderReference(field, placement.toDisplay(), camera, sensor, s).image;
 //   float z = img.at(x, y, img.channelIndex("Z"));
 #include <cstdint>
+#include <vector>
 
 #include "camera/camera_model.h"
 #include "camera/sensor.h"
@@ -68,6 +69,10 @@ struct ReferenceSettings {
   bool progress = true;
   int raysPerBatch = 4096;
   bool depth = false;  // add channels A and Z (see above)
+  // Pixels a comparison does not read (0 in this width x height map) get sppElsewhere samples,
+  // the first of the same pixel's full set (0: none, black); see render/field_renderer.h.
+  const std::vector<uint8_t>* fullSamples = nullptr;
+  int sppElsewhere = 1;
 };
 
 // `fieldToDisplay`: the placement (Placement::toDisplay()). InputError (key sppKey) for spp < 1

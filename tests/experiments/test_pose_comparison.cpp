@@ -1,0 +1,117 @@
+// The reference as a comparison renders it (experiments/pose_comparison.h): full samples on the
+// mask and as far as the band-limited reference's filter reaches from it, one sample elsewhere.
+// On an analytic plane at z = 5 mm, whose filter reaches farther than at the MLA plane (so the
+// second pass is needed), the compared pixels and the band-limited reference on the mask are
+// those of the reference rendered in full, bit for bit, for fewer rays; a pixel far from the mask
+// is the one-sample reference's.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "camera/camera_config.h"
+#include "camera/camera_model.h"
+#include "experiments/pose_comparison.h"
+#include "scene/analytic_scene.h"
+#include "view/display_pose.h"
+#include "view/reference_renderer.h"
+
+using namespace inim;
+
+namespace {
+
+// A 40 x 40 mm grey square at z = 5 mm lit head-on by a distant point light.
+std::unique_ptr<AnalyticScene> planeScene() {
+  return AnalyticScene::fromJson(Json::parse(R"({
+    "units": "mm",
+    "integrator": {"type": "direct"},
+    "materials": {"grey": {"type": "diffuse", "reflectance": 0.5}},
+    "objects": [{"id": 1, "name": "plane z=5", "type": "rectangle", "size_mm": [40, 40],
+                 "translate_mm": [0, 0, 5], "material": "grey"}],
+    "lights": [{"name": "distant", "type": "point", "position_mm": [0, 0, 1000000], "spectrum": 1.0,
+                "scale": 3.14159265358979e12}]
+  })"), "plane-test-scene.json");
+}
+
+const CameraSensor& sensor() {
+  static const CameraDescription c = loadCameraDescription("alvium-1800-u-500c");
+  return c.sensor;
+}
+
+// 2 px lenslets (sigma 0.58 px, reach 2 px at z = 0); at z = 5 the EI pixel's cone adds
+// 10 px (sigma 3.0 px, reach 10 px).
+BandLimit testBand() { return BandLimit{0.1, 0.1, 1.0, 200.0, 0.05}; }
+
+PixelMask centreMask(int W, int H) {
+  PixelMask m;
+  m.width = W, m.height = H;
+  m.on.assign(size_t(W) * H, 0);
+  for (int y = 14; y < 34; ++y)
+    for (int x = 20; x < 44; ++x) m.on[size_t(y) * W + x] = 1;
+  return m;
+}
+
+bool samePixel(const Image& a, const Image& b, int x, int y) {
+  const size_t C = size_t(a.numChannels()), i = (size_t(y) * size_t(a.width) + size_t(x)) * C;
+  return std::memcmp(&a.data[i], &b.data[i], sizeof(float) * C) == 0;
+}
+
+}  // namespace
+
+TEST(PoseComparison, ComparedReferenceIsTheFullReferenceWhereItIsRead) {
+  const auto scene = planeScene();
+  const DisplayPose pose{0.0, 0.0, 200.0};
+  PinholeCameraModel cam(SensorGeometry{64, 48, 0.05}, pose.cameraPose(), 20.0, false);
+  const BandLimit band = testBand();
+  ASSERT_GT(band.sigmaPx(5.0), 4.0 * band.sigmaPx(0.0));  // the second pass has work to do
+  const PixelMask mask = centreMask(64, 48);
+  ReferenceSettings s;
+  s.spp = 8;
+  s.progress = false;
+  s.depth = true;
+  ViewResult full = renderReference(*scene, Transform(), cam, sensor(), s);
+  ViewResult compared = renderComparedReference(*scene, Transform(), cam, sensor(), s, mask, band);
+  std::printf("[ measured ] rays: full %llu, compared %llu\n", (unsigned long long)full.stats.tracedRays,
+              (unsigned long long)compared.stats.tracedRays);
+  EXPECT_LT(compared.stats.tracedRays, full.stats.tracedRays * 3 / 4);
+  int differing = 0;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x)
+      if (mask.counts(x, y) && !samePixel(full.image, compared.image, x, y)) ++differing;
+  EXPECT_EQ(differing, 0);
+
+  const ReferenceDepth fullDepth = takeDepthChannels(full.image);
+  const ReferenceDepth comparedDepth = takeDepthChannels(compared.image);
+  const Image a = bandLimitedReference(full.image, fullDepth, band);
+  const Image b = bandLimitedReference(compared.image, comparedDepth, band);
+  differing = 0;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x)
+      if (mask.counts(x, y) && !samePixel(a, b, x, y)) ++differing;
+  EXPECT_EQ(differing, 0) << "band-limited pixels on the mask differ";
+
+  // Far from the mask (a corner, on the plane): the first of the pixel's 8 samples, as in a
+  // one-sample reference.
+  ReferenceSettings one = s;
+  one.spp = 1;
+  one.depth = false;
+  const Image single = renderReference(*scene, Transform(), cam, sensor(), one).image;
+  EXPECT_TRUE(samePixel(single, compared.image, 1, 1));
+  EXPECT_TRUE(samePixel(single, compared.image, 62, 46));
+  EXPECT_FALSE(samePixel(full.image, compared.image, 62, 46));
+}
+
+TEST(PoseComparison, NoPixelOfTheMaskLeavesTheReferenceInFull) {
+  const auto scene = planeScene();
+  const DisplayPose pose{0.0, 0.0, 200.0};
+  PinholeCameraModel cam(SensorGeometry{32, 24, 0.05}, pose.cameraPose(), 20.0, false);
+  PixelMask empty;
+  empty.width = 32, empty.height = 24;
+  empty.on.assign(32 * 24, 0);
+  ReferenceSettings s;
+  s.spp = 4;
+  s.progress = false;
+  const ViewResult full = renderReference(*scene, Transform(), cam, sensor(), s);
+  const ViewResult compared = renderComparedReference(*scene, Transform(), cam, sensor(), s, empty, testBand());
+  ASSERT_EQ(full.image.data.size(), compared.image.data.size());
+  EXPECT_EQ(std::memcmp(full.image.data.data(), compared.image.data.data(), full.image.data.size() * sizeof(float)), 0);
+}
