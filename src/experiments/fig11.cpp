@@ -8,6 +8,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include <tbb/task_group.h>
+
 #include "analysis/band_limit.h"
 #include "analysis/contact_sheet.h"
 #include "analysis/plot.h"
@@ -86,6 +88,15 @@ std::optional<ViewPair>& sheetSlot(Fig11Views& sheet, const std::string& name) {
   return sheet.centre;
 }
 
+// A pose's two renders, before they are compared.
+struct PoseRenders {
+  Fig11View view;
+  std::unique_ptr<CameraModel> camera;
+  ViewResult rec, ref;
+  ReferenceDepth refDepth;
+  PixelMask mask;
+};
+
 // A run: the inputs, the synthesized display and the outputs being collected.
 class Fig11Run {
  public:
@@ -103,35 +114,47 @@ class Fig11Run {
 
   // Left/right: the display turned about its vertical axis; top/bottom: about its horizontal
   // axis (view/display_pose.h fig11Poses, and its sign convention).
-  Fig11View renderPose(const NamedPose& p) {
-    Fig11View v;
+  PoseRenders renderPose(const NamedPose& p) const {
+    PoseRenders r;
+    Fig11View& v = r.view;
     v.name = p.name;
     v.label = p.label;
     v.pose = p.pose;
     ViewCameraOptions co;
     co.width = s_.width;
-    auto camera = makeViewCamera(in_.camera, v.pose, co);
+    r.camera = makeViewCamera(in_.camera, v.pose, co);
 
     ViewSettings vs;  // the estimator and aperture grid of every view tool
     vs.spp = s_.spp;
     vs.apertureGrid = s_.apertureGrid;
     vs.seed = s_.seed;
-    ViewResult rec = renderView(*camera, in_.camera.sensor, *dm_.mla, *dm_.panel, dm_.area, vs);
-    v.displayInView = rec.stats.displayInView();
-    v.reconstructionSeconds = rec.stats.seconds;
+    r.rec = renderView(*r.camera, in_.camera.sensor, *dm_.mla, *dm_.panel, dm_.area, vs);
+    v.displayInView = r.rec.stats.displayInView();
+    v.reconstructionSeconds = r.rec.stats.seconds;
+    // The reference in full where it is compared (the mask and the band limit's reach), one
+    // sample per pixel around that (the picture): pose_comparison.h.
+    r.mask = displayMask(*r.camera, dm_.area);
     ReferenceSettings rs = referenceSettings(s_.seed);
     rs.depth = s_.depthError;
-    ViewResult ref = renderReference(*in_.field.field, in_.fieldToDisplay, *camera, in_.camera.sensor, rs);
-    const ReferenceDepth refDepth = takeDepthChannels(ref.image);  // the reference images stay RGB
-    v.referenceSeconds = ref.stats.seconds;
+    r.ref = renderComparedReference(*in_.field.field, in_.fieldToDisplay, *r.camera, in_.camera.sensor, rs, r.mask,
+                                    bandLimitOf(*r.camera));
+    r.refDepth = takeDepthChannels(r.ref.image);  // the reference images stay RGB
+    v.referenceSeconds = r.ref.stats.seconds;
+    return r;
+  }
 
-    const PoseImages img = exposeAlike(rec.image, ref.image, refToCdM2_, in_.camera.sensor);
+  // The renders exposed alike, written, compared (metrics, band limit, depth, budget).
+  Fig11View comparePose(const PoseRenders& r) {
+    Fig11View v = r.view;
+    const CameraModel* camera = r.camera.get();
+    const PixelMask& mask = r.mask;
+    const ReferenceDepth& refDepth = r.refDepth;
+    const PoseImages img = exposeAlike(r.rec.image, r.ref.image, refToCdM2_, in_.camera.sensor);
     const Image limited = bandLimitedReference(img.refExposed, refDepth, bandLimitOf(*camera));
     writeImage(img.recExposed, out("view_" + v.name + ".exr"));
     writeImage(img.recSrgb, out("view_" + v.name + ".png"));
     writeImage(img.refExposed, out("reference_" + v.name + ".exr"));
     writeImage(img.refSrgb, out("reference_" + v.name + ".png"));
-    const PixelMask mask = displayMask(*camera, dm_.area);
     if (mask.count() == 0) return v;
     CompareOptions copt;
     copt.spaceA = copt.spaceB = "srgb";
@@ -141,7 +164,7 @@ class Fig11Run {
     compareWithBandLimited(v, img, limited, refDepth, mask, *camera);
     v.depthBins = depth.addPose(v.name, v.label, {img.refExposed, img.recExposed, img.refSrgb, img.recSrgb}, refDepth,
                                 mask, metrics[v.name]);
-    if (budget_) budgets.push_back(poseBudgetOf(v, *camera, rec.image, img, mask, limited));
+    if (budget_) budgets.push_back(poseBudgetOf(v, *camera, r.rec.image, img, mask, limited));
     return v;
   }
 
@@ -193,6 +216,8 @@ class Fig11Run {
                           const PixelMask& mask, const Image& limited) {
     ReferenceSettings rs = referenceSettings(s_.seed + 1);
     rs.progress = false;
+    rs.fullSamples = &mask.on;  // the floor is measured on the mask only
+    rs.sppElsewhere = 0;
     const Image second = renderReference(*in_.field.field, in_.fieldToDisplay, camera, in_.camera.sensor, rs).image;
     const Image secondExposed = scaledImage(second, refToCdM2_ * img.exposure);
     const bool fullChain = !in_.calibration && s_.mla == MlaKind::Real && s_.budgetSpp == s_.spp;
@@ -270,17 +295,45 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   }
 
   // 2. Five poses: reconstruction and reference through the same camera.
+  // Writing and comparing are mostly serial: each pose is written and compared while the next
+  // one renders (one comparison at a time, in pose order, so the outputs do not depend on it).
   Fig11Run run(s, in, dm, eia.stats.exposureUsed * in.display.panel.peakLuminanceCdM2, s.budget ? &scene : nullptr);
-  writeImage(eia.eia, run.out("eia.exr"), {{kEiaExposureHeader, eia.stats.exposureUsed}});
-  writeImage(encodeForPanel(eia.eia, in.display.panel.eotf), run.out("eia.png"));
-  for (const NamedPose& p : fig11Poses(s.angleDeg, in.distanceMm)) {
-    if (!s.poses.empty() && std::find(s.poses.begin(), s.poses.end(), p.name) == s.poses.end()) continue;
-    result.views.push_back(run.renderPose(p));
+  std::vector<NamedPose> poses;
+  for (const NamedPose& p : fig11Poses(s.angleDeg, in.distanceMm))
+    if (s.poses.empty() || std::find(s.poses.begin(), s.poses.end(), p.name) != s.poses.end()) poses.push_back(p);
+  std::vector<PoseRenders> renders(poses.size());
+  std::vector<Fig11View> compared(poses.size());
+  tbb::task_group background;
+  auto report = [&](size_t i) {
+    result.views.push_back(std::move(compared[i]));
+    renders[i] = PoseRenders{};
     if (observer.viewDone) observer.viewDone(result.views.back());
     if (observer.budgetDone && run.budgets.size() > result.budgets.size()) {
       result.budgets.push_back(run.budgets.back());
       observer.budgetDone(result.budgets.back());
     }
+  };
+  try {
+    const std::string eiaExr = run.out("eia.exr"), eiaPng = run.out("eia.png");
+    background.run([&] {
+      writeImage(eia.eia, eiaExr, {{kEiaExposureHeader, eia.stats.exposureUsed}});
+      writeImage(encodeForPanel(eia.eia, in.display.panel.eotf), eiaPng);
+    });
+    for (size_t i = 0; i < poses.size(); ++i) {
+      renders[i] = run.renderPose(poses[i]);
+      background.wait();
+      if (i > 0) report(i - 1);
+      background.run([&, i] { compared[i] = run.comparePose(renders[i]); });
+    }
+    background.wait();
+    if (!poses.empty()) report(poses.size() - 1);
+  } catch (...) {
+    background.cancel();
+    try {
+      background.wait();
+    } catch (...) {
+    }
+    throw;
   }
   result.budgets = run.budgets;
   if (s.budget) writeBudget(run, result);
