@@ -137,6 +137,7 @@ class QuadratureTile final : public TileEstimator {
 Vec3d QuadratureTile::pixel(int x, int y) {
   const int blockSize = estimator_.blockSize_;
   const size_t block = size_t(y / blockSize) * size_t(estimator_.blocksX_) + size_t(x / blockSize);
+  std::call_once(estimator_.built_[block], [&] { estimator_.buildBlock(block); });
   const ApertureTable& table = estimator_.tables_[block];
   const BlockCamera& camera = estimator_.blockCameras_[block];
   const bool ready = table.valid() && camera.ok;
@@ -461,10 +462,9 @@ QuadratureEstimator::QuadratureEstimator(const EstimatorContext& context) : cont
   strataY_ = s.spp / strataX_;
   if (context.channels.dispersive()) nodes_ = wavelengthNodes(context.channels, nodesPerPrimary_);
   // A dispersive camera: the block cameras' lateral colour at every node (primary-major).
-  std::vector<float> colourLambdas;
   if (context.cameraDispersive)
     for (int c = 0; c < kNumPrimaries; ++c)
-      colourLambdas.insert(colourLambdas.end(), nodes_.lambda[c].begin(), nodes_.lambda[c].end());
+      colourLambdas_.insert(colourLambdas_.end(), nodes_.lambda[c].begin(), nodes_.lambda[c].end());
 
   // One table per block of ~0.1 mm of the sensor (the pupil's shape, vignetting, changes
   // little over that), at most 32 pixels; built at the block's centre pixel.
@@ -477,22 +477,22 @@ QuadratureEstimator::QuadratureEstimator(const EstimatorContext& context) : cont
   const int blocksY = (H + blockSize_ - 1) / blockSize_;
   tables_.resize(size_t(blocksX_) * size_t(blocksY));
   blockCameras_.resize(tables_.size());
-  std::atomic<uint64_t> rays{0};
-  parallelForRange(int64_t(tables_.size()), [&](int64_t b0, int64_t b1) {
-    uint64_t chunkRays = 0;
-    for (int64_t b = b0; b < b1; ++b) {
-      const int bx = int(b % blocksX_), by = int(b / blocksX_);
-      const Vec2 centre(0.5f * float(bx * blockSize_ + std::min(W, (bx + 1) * blockSize_)),
-                        0.5f * float(by * blockSize_ + std::min(H, (by + 1) * blockSize_)));
-      tables_[size_t(b)] = buildApertureTable(camera, centre, context.referenceLambdaNm, s.apertureGrid, chunkRays,
-                                              context.frontZ);
-      if (tables_[size_t(b)].valid())
-        blockCameras_[size_t(b)] = buildBlockCamera(camera, tables_[size_t(b)], centre, context.referenceLambdaNm,
-                                                    context.frontZ, colourLambdas, chunkRays);
-    }
-    rays += chunkRays;
-  }, nullptr, 1);
-  tableRays_ = rays;
+  built_ = std::make_unique<std::once_flag[]>(tables_.size());
+}
+
+void QuadratureEstimator::buildBlock(size_t b) const {
+  const CameraModel& camera = context_.camera;
+  const int W = camera.width(), H = camera.height();
+  const int bx = int(b % size_t(blocksX_)), by = int(b / size_t(blocksX_));
+  const Vec2 centre(0.5f * float(bx * blockSize_ + std::min(W, (bx + 1) * blockSize_)),
+                    0.5f * float(by * blockSize_ + std::min(H, (by + 1) * blockSize_)));
+  uint64_t rays = 0;
+  tables_[b] = buildApertureTable(camera, centre, context_.referenceLambdaNm, context_.settings.apertureGrid, rays,
+                                  context_.frontZ);
+  if (tables_[b].valid())
+    blockCameras_[b] = buildBlockCamera(camera, tables_[b], centre, context_.referenceLambdaNm, context_.frontZ,
+                                        colourLambdas_, rays);
+  tableRays_ += rays;
 }
 
 std::unique_ptr<TileEstimator> QuadratureEstimator::beginTile() const {

@@ -24,7 +24,10 @@
 // (slope Jacobian), no camera-lens rays, and one box average per table point (~0.8 G^2); per
 // block of pixels one table (~G^2 camera rays). Falls back to PointSample for the pixels of a
 // block whose table or camera cannot be built. Needs SpectralSampling::Primaries.
+#include <atomic>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "view/estimators/aperture_table.h"
@@ -51,7 +54,7 @@ struct WavelengthNodes {
 
 class QuadratureEstimator final : public PixelEstimator {
  public:
-  // Builds the aperture tables and block cameras. InputError for visible spectral sampling
+  // Sizes the aperture tables and block cameras (each built on first use). InputError for visible spectral sampling
   // (key spectral), wavelength_nodes outside 1..64 or aperture_grid outside 2..64.
   explicit QuadratureEstimator(const EstimatorContext& context);
   PanelEstimator kind() const override { return PanelEstimator::Quadrature; }
@@ -65,9 +68,14 @@ class QuadratureEstimator final : public PixelEstimator {
   int nodesPerPrimary_ = 1;
   WavelengthNodes nodes_;          // dispersive only
   int blockSize_ = 1, blocksX_ = 1;  // pixels per table block, blocks per row
-  std::vector<ApertureTable> tables_;
-  std::vector<BlockCamera> blockCameras_;
-  uint64_t tableRays_ = 0;
+  // A block's table and camera are built when a pixel of the block is first rendered: the tiles
+  // that cannot see the display need none. They depend on the block only, not on the thread.
+  void buildBlock(size_t block) const;
+  std::vector<float> colourLambdas_;
+  std::unique_ptr<std::once_flag[]> built_;
+  mutable std::vector<ApertureTable> tables_;
+  mutable std::vector<BlockCamera> blockCameras_;
+  mutable std::atomic<uint64_t> tableRays_{0};
 };
 
 }  // namespace inim
