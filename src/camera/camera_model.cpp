@@ -56,6 +56,11 @@ CameraModel::CameraModel(const SensorGeometry& sensor, const ViewingPose& pose) 
   if (sensor.widthPx < 1 || sensor.heightPx < 1 || !(sensor.pitchMm > 0.0))
     throw InputError("", "sensor", std::to_string(sensor.widthPx) + " x " + std::to_string(sensor.heightPx) + " px, pitch " +
                          formatNumber(sensor.pitchMm) + " mm", "a sensor of at least 1 x 1 pixels with a pitch > 0");
+  setPose(pose);
+}
+
+void CameraModel::setPose(const ViewingPose& pose) {
+  pose_ = pose;
   const Vec3d look = pose.lookAt - pose.eye;
   const double len = glm::length(look);
   if (!(len > 0.0) || !std::isfinite(len))
@@ -68,6 +73,12 @@ CameraModel::CameraModel(const SensorGeometry& sensor, const ViewingPose& pose) 
     throw InputError("", "pose.up", vecText(pose.up), "an up vector not parallel to the viewing direction");
   right_ = r / rl;
   up_ = glm::cross(back_, right_);
+}
+
+std::unique_ptr<RealLensCameraModel> RealLensCameraModel::atPose(const ViewingPose& pose) const {
+  auto m = std::make_unique<RealLensCameraModel>(*this);
+  m->setPose(pose);
+  return m;
 }
 
 float CameraModel::generateRay(int col, int row, Rng& rng, float lambdaNm, Ray& out) const {

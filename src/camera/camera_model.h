@@ -83,6 +83,7 @@ class CameraModel {
   // Throws InputError for a non-positive sensor or a degenerate pose (eye at lookAt, or up
   // along the viewing direction).
   CameraModel(const SensorGeometry& sensor, const ViewingPose& pose);
+  void setPose(const ViewingPose& pose);  // the same checks
   // Offset of a pixel position from the image centre on the sensor, in mm, upright: x to the
   // right and y up as seen in the final image.
   Vec2d uprightSensorOffset(Vec2 pixel) const;
@@ -173,6 +174,9 @@ class RealLensCameraModel final : public CameraModel {
   // Lens coordinates -> display frame (lens z axis along -viewing direction, eye at the
   // entrance pupil).
   Ray lensToWorld(const LensRay& r) const;
+  // The same lens, focus, exit-pupil bounds and centre irradiance (none depends on the pose)
+  // at another pose: nothing is traced again.
+  std::unique_ptr<RealLensCameraModel> atPose(const ViewingPose& pose) const;
 
   const LensSystem& lens() const { return lens_; }
   const LensInfo& lensInfo() const { return info_; }

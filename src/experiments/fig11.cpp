@@ -122,7 +122,8 @@ class Fig11Run {
     v.pose = p.pose;
     ViewCameraOptions co;
     co.width = s_.width;
-    r.camera = makeViewCamera(in_.camera, v.pose, co);
+    r.camera = makeViewCamera(in_.camera, v.pose, co, firstCamera_.get());
+    if (!firstCamera_) firstCamera_ = makeViewCamera(in_.camera, v.pose, co, r.camera.get());
 
     ViewSettings vs;  // the estimator and aperture grid of every view tool
     vs.spp = s_.spp;
@@ -131,8 +132,8 @@ class Fig11Run {
     r.rec = renderView(*r.camera, in_.camera.sensor, *dm_.mla, *dm_.panel, dm_.area, vs);
     v.displayInView = r.rec.stats.displayInView();
     v.reconstructionSeconds = r.rec.stats.seconds;
-    // The reference in full where it is compared (the mask and the band limit's reach), one
-    // sample per pixel around that (the picture): pose_comparison.h.
+    // The reference where it is compared (the mask and the band limit's reach), black around
+    // that: pose_comparison.h.
     r.mask = displayMask(*r.camera, dm_.area);
     ReferenceSettings rs = referenceSettings(s_.seed);
     rs.depth = s_.depthError;
@@ -234,6 +235,9 @@ class Fig11Run {
   double refToCdM2_;
   const BudgetScene* budget_;
   fs::path dir_;
+  // The first pose's camera: the others are it moved (makeViewCamera), its lens focused once.
+  // Used by renderPose only (on the run's thread).
+  mutable std::unique_ptr<CameraModel> firstCamera_;
 
  public:
   Fig11DepthError depth{outputs, dir_};  // after dir_: members are made in this order

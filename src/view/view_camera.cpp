@@ -31,7 +31,7 @@ SensorGeometry viewSensorGeometry(const CameraDescription& c, int width, int hei
 }
 
 std::unique_ptr<CameraModel> makeViewCamera(const CameraDescription& c, const DisplayPose& dp,
-                                            const ViewCameraOptions& o) {
+                                            const ViewCameraOptions& o, const CameraModel* samePrecomputed) {
   const ViewingPose pose = dp.cameraPose();
   const SensorGeometry sensor = viewSensorGeometry(c, o.width, o.height);
   if (o.focusMm < 0.0 || !std::isfinite(o.focusMm))
@@ -46,6 +46,12 @@ std::unique_ptr<CameraModel> makeViewCamera(const CameraDescription& c, const Di
     s.focusDistanceMm = focus;
     s.focusMode = c.focusMode;
     s.fresnel = c.fresnel;
+    const auto* same = dynamic_cast<const RealLensCameraModel*>(samePrecomputed);
+    if (same && same->sensor().widthPx == sensor.widthPx && same->sensor().heightPx == sensor.heightPx &&
+        same->sensor().pitchMm == sensor.pitchMm && same->settings().fNumber == s.fNumber &&
+        same->settings().focusDistanceMm == s.focusDistanceMm && same->settings().focusMode == s.focusMode &&
+        same->settings().fresnel == s.fresnel)
+      return same->atPose(pose);
     return std::make_unique<RealLensCameraModel>(c.lens, sensor, pose, s);
   }
   LensSystem lens = c.lens;

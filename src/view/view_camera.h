@@ -27,8 +27,11 @@ struct ViewCameraOptions {
 SensorGeometry viewSensorGeometry(const CameraDescription& c, int width, int height);
 
 // Builds the camera model in the DISPLAY frame (pose.cameraPose()), so its rays need no
-// further transform. InputError for a bad size, focus, or pose.
+// further transform. InputError for a bad size, focus, or pose. `samePrecomputed`: a camera
+// this made from the same description at another pose; a real lens with the same sensor and
+// focus is then that one moved (RealLensCameraModel::atPose), not focused and scanned again.
 std::unique_ptr<CameraModel> makeViewCamera(const CameraDescription& c, const DisplayPose& pose,
-                                            const ViewCameraOptions& o);
+                                            const ViewCameraOptions& o,
+                                            const CameraModel* samePrecomputed = nullptr);
 
 }  // namespace inim
