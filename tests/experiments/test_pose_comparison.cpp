@@ -1,9 +1,9 @@
 // The reference as a comparison renders it (experiments/pose_comparison.h): full samples on the
-// mask and as far as the band-limited reference's filter reaches from it, one sample elsewhere.
+// mask and as far as the band-limited reference's filter reaches from it, black elsewhere.
 // On an analytic plane at z = 5 mm, whose filter reaches farther than at the MLA plane (so the
 // second pass is needed), the compared pixels and the band-limited reference on the mask are
 // those of the reference rendered in full, bit for bit, for fewer rays; a pixel far from the mask
-// is the one-sample reference's.
+// is black.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -89,15 +89,43 @@ TEST(PoseComparison, ComparedReferenceIsTheFullReferenceWhereItIsRead) {
       if (mask.counts(x, y) && !samePixel(a, b, x, y)) ++differing;
   EXPECT_EQ(differing, 0) << "band-limited pixels on the mask differ";
 
-  // Far from the mask (a corner, on the plane): the first of the pixel's 8 samples, as in a
-  // one-sample reference.
+  // Far from the mask (corners, on the plane): black, where the full reference is not.
+  for (auto [x, y] : {std::pair{1, 1}, {62, 46}}) {
+    EXPECT_GT(full.image.at(x, y, 1), 0.0f);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(compared.image.at(x, y, c), 0.0f);
+  }
+}
+
+TEST(PoseComparison, OneSampleOutsideAMapIsTheFirstOfTheFullSet) {
+  // A reference with 1 sample outside a map equals, there, a 1-sample reference; inside, the
+  // 8-sample one (the samples of a pixel do not depend on how many are drawn).
+  const auto scene = planeScene();
+  const DisplayPose pose{0.0, 0.0, 200.0};
+  PinholeCameraModel cam(SensorGeometry{32, 24, 0.05}, pose.cameraPose(), 20.0, false);
+  const PixelMask mask = [] {
+    PixelMask m;
+    m.width = 32, m.height = 24;
+    m.on.assign(32 * 24, 0);
+    for (int y = 8; y < 16; ++y)
+      for (int x = 8; x < 24; ++x) m.on[size_t(y) * 32 + x] = 1;
+    return m;
+  }();
+  ReferenceSettings s;
+  s.spp = 8;
+  s.progress = false;
+  const Image full = renderReference(*scene, Transform(), cam, sensor(), s).image;
   ReferenceSettings one = s;
   one.spp = 1;
-  one.depth = false;
   const Image single = renderReference(*scene, Transform(), cam, sensor(), one).image;
-  EXPECT_TRUE(samePixel(single, compared.image, 1, 1));
-  EXPECT_TRUE(samePixel(single, compared.image, 62, 46));
-  EXPECT_FALSE(samePixel(full.image, compared.image, 62, 46));
+  ReferenceSettings mixed = s;
+  mixed.fullSamples = &mask.on;
+  mixed.sppElsewhere = 1;
+  const Image both = renderReference(*scene, Transform(), cam, sensor(), mixed).image;
+  int wrong = 0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 32; ++x)
+      if (!samePixel(mask.counts(x, y) ? full : single, both, x, y)) ++wrong;
+  EXPECT_EQ(wrong, 0);
 }
 
 TEST(PoseComparison, NoPixelOfTheMaskLeavesTheReferenceInFull) {
