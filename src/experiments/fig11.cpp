@@ -132,8 +132,8 @@ class Fig11Run {
     r.rec = renderView(*r.camera, in_.camera.sensor, *dm_.mla, *dm_.panel, dm_.area, vs);
     v.displayInView = r.rec.stats.displayInView();
     v.reconstructionSeconds = r.rec.stats.seconds;
-    // The reference where it is compared (the mask and the band limit's reach), black around
-    // that: pose_comparison.h.
+    // The reference in full where it is compared (the mask and the band limit's reach), one
+    // sample per pixel around that: pose_comparison.h.
     r.mask = displayMask(*r.camera, dm_.area);
     ReferenceSettings rs = referenceSettings(s_.seed);
     rs.depth = s_.depthError;

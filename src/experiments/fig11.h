@@ -3,8 +3,8 @@
 // then looks at the display and at the field itself with the same camera from five directions
 // (0 deg, +-angle horizontally, +-angle vertically, the display turned about its centre as the
 // paper's gimbal does), and writes into the output folder: eia.exr/png, view_POSE and
-// reference_POSE (.exr linear camera RGB x exposure, .png sRGB; the reference rendered where it
-// is compared, black elsewhere: pose_comparison.h), a contact sheet laid out like
+// reference_POSE (.exr linear camera RGB x exposure, .png sRGB; the reference in full where it
+// is compared, one sample per pixel elsewhere: pose_comparison.h), a contact sheet laid out like
 // the figure, and metrics.json / metrics.csv (PSNR, SSIM, CIEDE2000 mean and 95th percentile
 // over the pixels that see the display; both images at one exposure, compared as sRGB). With a
 // calibration file the EIA's drive values go through it (as `inim eia --calibration`);

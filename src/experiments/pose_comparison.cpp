@@ -94,7 +94,6 @@ ViewResult renderComparedReference(const Field& field, const Transform& fieldToD
   ReferenceSettings first = s;
   const std::vector<uint8_t> full = grownMask(mask, filterReachPx(b, 0.0));
   first.fullSamples = &full;
-  first.sppElsewhere = 0;
   ViewResult r = renderReference(field, fieldToDisplay, camera, sensor, first);
   if (!s.depth) return r;
   size_t count = 0;

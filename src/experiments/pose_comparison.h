@@ -48,10 +48,11 @@ Json bandLimitJson(const BandLimit& b);  // the filter's parameters, for metrics
 // channels every pixel is taken at the MLA plane.
 Image bandLimitedReference(const Image& ref, const ReferenceDepth& depth, const BandLimit& b);
 
-// The reference only where the comparison reads it: the mask's pixels and those the
-// band-limited reference's filter reaches from them (3 sigma at each pixel's depth), at s.spp;
-// the others stay black, as the reconstruction is off the display (one sample there would
-// show grain and vignetted black pixels, not the scene). Two passes:
+// The reference in full (s.spp) only where the comparison reads it: the mask's pixels and those
+// the band-limited reference's filter reaches from them (3 sigma at each pixel's depth); the
+// others get s.sppElsewhere samples (default 1: a grainy picture, but the whole image's
+// statistics, so the automatic exposure (99th percentile) stays that of the full reference;
+// black there would raise the exposure and change every metric). Two passes:
 // the mask grown by the filter's reach at the MLA plane, then the pixels a deeper pixel's
 // filter reaches beyond that (s.depth only). A pixel's samples do not depend on the pass, so
 // the compared pixels, and the band-limited reference on the mask, are those of a reference
