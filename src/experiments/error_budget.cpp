@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <optional>
 
 #include "analysis/plot.h"
@@ -13,6 +14,7 @@
 #include "core/format.h"
 #include "view/display_model.h"
 #include "view/estimators/channel_response.h"
+#include "view/estimators/quadrature_tables.h"
 #include "view/view_image.h"
 #include "view/view_renderer.h"
 
@@ -74,7 +76,8 @@ bool isFullChain(const BudgetRung& r) { return r.subpixels && r.realMla && r.cov
 class RungRenders {
  public:
   RungRenders(const BudgetScene& s, const CameraModel& camera, const Image* fullChainView)
-      : s_(s), camera_(camera), observer_(cieObserverSensor(s.camera->sensor.geometry())) {
+      : s_(s), camera_(camera), observer_(cieObserverSensor(s.camera->sensor.geometry())),
+        tables_(std::make_shared<QuadratureTableCache>(camera)) {
     if (fullChainView) cameraViews_[geometryKey(rung("full", "", true, true, true, true))] = *fullChainView;
   }
 
@@ -105,6 +108,7 @@ class RungRenders {
   Image render(const DisplayModel& dm, const CameraSensor& sensor) const {
     ViewSettings vs = s_.view;
     vs.progress = false;
+    vs.tableCache = tables_;  // the rungs differ in the display only
     return renderView(camera_, sensor, *dm.mla, *dm.panel, dm.area, vs).image;
   }
 
@@ -113,6 +117,7 @@ class RungRenders {
   const CameraSensor observer_;
   std::map<std::string, Image> cameraViews_;
   std::optional<glm::dmat3> toObserver_;
+  std::shared_ptr<QuadratureTableCache> tables_;
 };
 
 }  // namespace

@@ -3,9 +3,12 @@
 // and their parameters. The defaults are the ones `inim view`, `fig11`, the studies and `bench`
 // use (set nothing here unless a command-line option asks).
 #include <cstdint>
+#include <memory>
 #include <string>
 
 namespace inim {
+
+class QuadratureTableCache;
 
 // Wavelengths of the sampled estimators (docs/view-estimators.md): each primary's spectrum
 // importance-sampled (Primaries), or pbrt-v4's visible 4-wavelength packet (Visible).
@@ -51,6 +54,9 @@ struct ViewSettings {
   // Quadrature: wavelength nodes per primary when something is dispersive (1: at the middle of
   // each primary's spectrum, weighted by the whole spectrum's camera RGB).
   int wavelengthNodes = 1;
+  // Quadrature: aperture tables shared with other renders through the same camera
+  // (estimators/quadrature_tables.h); none: this render's own.
+  std::shared_ptr<QuadratureTableCache> tableCache;
 };
 
 }  // namespace inim

@@ -6,9 +6,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
 
 #include "mla/ideal_mla.h"
 #include "mla/real_mla.h"
+#include "view/estimators/quadrature_tables.h"
 #include "view/view_renderer.h"
 #include "real_setup.h"
 #include "view_test_util.h"
@@ -101,4 +105,44 @@ TEST(ViewQuadrature, RealLensAgreesWithThePointEstimator) {
   std::printf("[ measured ] real lens: quadrature (1 spp) / point (1024 spp) = %.4f; %llu fallbacks, %llu lost\n",
               sq / sa, (unsigned long long)q.stats.quadrature.fallbacks, (unsigned long long)q.stats.quadrature.lostPieces);
   EXPECT_NEAR(sq / sa, 1.0, 0.01);
+}
+
+TEST(ViewQuadrature, SharedTablesGiveTheSameImagesForOtherDisplays) {
+  // Renders through one camera that differ in the display (the real and the ideal MLA, a white
+  // and a patterned EIA) sharing their aperture tables: each image bit for bit its render with
+  // tables of its own; the second render through the same MLA front plane traces no table ray.
+  const RealSetup patterned, white(true);
+  const IdealLensletMla ideal(patterned.layout, RealSetup::P, 3.3, RealSetup::g);
+  ViewSettings s;
+  s.spp = 2;
+  s.progress = false;
+  s.apertureGrid = 12;
+  ViewSettings shared = s;
+  shared.tableCache = std::make_shared<QuadratureTableCache>(*patterned.camera);
+  struct Case {
+    const RealSetup& setup;
+    const MlaModel& mla;
+  };
+  uint64_t firstRays = 0;
+  int index = 0;
+  for (const Case& c : {Case{patterned, *patterned.mla}, Case{white, *white.mla}, Case{patterned, ideal}}) {
+    const ViewResult own = renderView(*patterned.camera, defaultCamera().sensor, c.mla, *c.setup.panel,
+                                      c.setup.layout.activeArea(), s);
+    const ViewResult withShared = renderView(*patterned.camera, defaultCamera().sensor, c.mla, *c.setup.panel,
+                                             c.setup.layout.activeArea(), shared);
+    ASSERT_EQ(own.image.data.size(), withShared.image.data.size());
+    EXPECT_EQ(std::memcmp(own.image.data.data(), withShared.image.data.data(), own.image.data.size() * sizeof(float)), 0)
+        << "case " << index;
+    if (index == 0) firstRays = withShared.stats.quadrature.probeRays;
+    if (index == 1) {
+      EXPECT_LT(withShared.stats.quadrature.probeRays, own.stats.quadrature.probeRays);
+    }
+    ++index;
+  }
+  EXPECT_GT(firstRays, 0u);
+  // Another camera cannot use the cache.
+  auto other = std::make_unique<ThinLensCameraModel>(*patterned.camera);
+  EXPECT_THROW(renderView(*other, defaultCamera().sensor, *patterned.mla, *patterned.panel,
+                          patterned.layout.activeArea(), shared),
+               std::logic_error);
 }

@@ -137,9 +137,9 @@ class QuadratureTile final : public TileEstimator {
 Vec3d QuadratureTile::pixel(int x, int y) {
   const int blockSize = estimator_.blockSize_;
   const size_t block = size_t(y / blockSize) * size_t(estimator_.blocksX_) + size_t(x / blockSize);
-  std::call_once(estimator_.built_[block], [&] { estimator_.buildBlock(block); });
-  const ApertureTable& table = estimator_.tables_[block];
-  const BlockCamera& camera = estimator_.blockCameras_[block];
+  estimator_.tables_->ensure(block);
+  const ApertureTable& table = estimator_.tables_->table(block);
+  const BlockCamera& camera = estimator_.tables_->camera(block);
   const bool ready = table.valid() && camera.ok;
   Vec3d rgb(0.0);
   fallback_.beginPixel(x, y);
@@ -462,9 +462,10 @@ QuadratureEstimator::QuadratureEstimator(const EstimatorContext& context) : cont
   strataY_ = s.spp / strataX_;
   if (context.channels.dispersive()) nodes_ = wavelengthNodes(context.channels, nodesPerPrimary_);
   // A dispersive camera: the block cameras' lateral colour at every node (primary-major).
+  QuadratureTableKey key;
   if (context.cameraDispersive)
     for (int c = 0; c < kNumPrimaries; ++c)
-      colourLambdas_.insert(colourLambdas_.end(), nodes_.lambda[c].begin(), nodes_.lambda[c].end());
+      key.colourLambdas.insert(key.colourLambdas.end(), nodes_.lambda[c].begin(), nodes_.lambda[c].end());
 
   // One table per block of ~0.1 mm of the sensor (the pupil's shape, vignetting, changes
   // little over that), at most 32 pixels; built at the block's centre pixel.
@@ -475,30 +476,23 @@ QuadratureEstimator::QuadratureEstimator(const EstimatorContext& context) : cont
                    : std::clamp(int(std::lround(0.1 / std::max(1e-9, camera.sensor().pitchMm))), 1, 32);
   blocksX_ = (W + blockSize_ - 1) / blockSize_;
   const int blocksY = (H + blockSize_ - 1) / blockSize_;
-  tables_.resize(size_t(blocksX_) * size_t(blocksY));
-  blockCameras_.resize(tables_.size());
-  built_ = std::make_unique<std::once_flag[]>(tables_.size());
-}
-
-void QuadratureEstimator::buildBlock(size_t b) const {
-  const CameraModel& camera = context_.camera;
-  const int W = camera.width(), H = camera.height();
-  const int bx = int(b % size_t(blocksX_)), by = int(b / size_t(blocksX_));
-  const Vec2 centre(0.5f * float(bx * blockSize_ + std::min(W, (bx + 1) * blockSize_)),
-                    0.5f * float(by * blockSize_ + std::min(H, (by + 1) * blockSize_)));
-  uint64_t rays = 0;
-  tables_[b] = buildApertureTable(camera, centre, context_.referenceLambdaNm, context_.settings.apertureGrid, rays,
-                                  context_.frontZ);
-  if (tables_[b].valid())
-    blockCameras_[b] = buildBlockCamera(camera, tables_[b], centre, context_.referenceLambdaNm, context_.frontZ,
-                                        colourLambdas_, rays);
-  tableRays_ += rays;
+  key.grid = s.apertureGrid;
+  key.blockSize = blockSize_;
+  key.blocksX = blocksX_;
+  key.blocksY = blocksY;
+  key.lambdaNm = context.referenceLambdaNm;
+  key.frontZ = context.frontZ;
+  tables_ = s.tableCache ? s.tableCache->tables(camera, key) : std::make_shared<const QuadratureTables>(camera, key);
+  raysBefore_ = tables_->rays();
 }
 
 std::unique_ptr<TileEstimator> QuadratureEstimator::beginTile() const {
   return std::make_unique<QuadratureTile>(*this);
 }
 
-void QuadratureEstimator::addStats(ViewStats& stats) const { stats.quadrature.probeRays += tableRays_; }
+// The tables' rays traced during this render (shared tables: those it built).
+void QuadratureEstimator::addStats(ViewStats& stats) const {
+  stats.quadrature.probeRays += tables_->rays() - raysBefore_;
+}
 
 }  // namespace inim

@@ -24,15 +24,14 @@
 // (slope Jacobian), no camera-lens rays, and one box average per table point (~0.8 G^2); per
 // block of pixels one table (~G^2 camera rays). Falls back to PointSample for the pixels of a
 // block whose table or camera cannot be built. Needs SpectralSampling::Primaries.
-#include <atomic>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <vector>
 
 #include "view/estimators/aperture_table.h"
 #include "view/estimators/block_camera.h"
 #include "view/estimators/panel_estimator.h"
+#include "view/estimators/quadrature_tables.h"
 
 namespace inim {
 
@@ -68,14 +67,10 @@ class QuadratureEstimator final : public PixelEstimator {
   int nodesPerPrimary_ = 1;
   WavelengthNodes nodes_;          // dispersive only
   int blockSize_ = 1, blocksX_ = 1;  // pixels per table block, blocks per row
-  // A block's table and camera are built when a pixel of the block is first rendered: the tiles
-  // that cannot see the display need none. They depend on the block only, not on the thread.
-  void buildBlock(size_t block) const;
-  std::vector<float> colourLambdas_;
-  std::unique_ptr<std::once_flag[]> built_;
-  mutable std::vector<ApertureTable> tables_;
-  mutable std::vector<BlockCamera> blockCameras_;
-  mutable std::atomic<uint64_t> tableRays_{0};
+  // Built when a pixel of the block is first rendered (the tiles that cannot see the display
+  // need none); shared with other renders through ViewSettings::tableCache.
+  std::shared_ptr<const QuadratureTables> tables_;
+  uint64_t raysBefore_ = 0;  // the shared tables' rays before this render
 };
 
 }  // namespace inim
