@@ -18,6 +18,7 @@
 #include "experiments/fig11.h"
 #include "experiments/fig11_depth.h"
 #include "fixtures.h"
+#include "grey_plane.h"
 #include "field/placement.h"
 #include "scene/analytic_scene.h"
 #include "view/display_pose.h"
@@ -27,23 +28,7 @@ using namespace inim;
 
 namespace {
 
-// A 20 x 20 mm grey square at z = 5 (scene mm) lit head-on by a distant point light.
-std::unique_ptr<AnalyticScene> planeScene() {
-  return AnalyticScene::fromJson(Json::parse(R"({
-    "units": "mm",
-    "integrator": {"type": "direct"},
-    "materials": {"grey": {"type": "diffuse", "reflectance": 0.5}},
-    "objects": [{"id": 1, "name": "plane z=5", "type": "rectangle", "size_mm": [20, 20],
-                 "translate_mm": [0, 0, 5], "material": "grey"}],
-    "lights": [{"name": "distant", "type": "point", "position_mm": [0, 0, 1000000], "spectrum": 1.0,
-                "scale": 3.14159265358979e12}]
-  })"), "plane-test-scene.json");
-}
 
-const CameraSensor& sensor() {
-  static const CameraDescription c = loadCameraDescription("alvium-1800-u-500c");
-  return c.sensor;
-}
 
 // Reference of the plane through `placement`, seen head-on from 200 mm: 64 x 48 pixels of
 // 0.05 mm at 20 mm (a 31 x 23 mm field at the plane).
@@ -54,7 +39,7 @@ Image planeReference(const AnalyticScene& scene, const Placement& placement) {
   s.spp = 8;
   s.progress = false;
   s.depth = true;
-  return renderReference(scene, placement.toDisplay(), cam, sensor(), s).image;
+  return renderReference(scene, placement.toDisplay(), cam, fixtures::defaultSensor(), s).image;
 }
 
 // Largest |Z - z| over the fully covered pixels, and how many there are.
@@ -74,7 +59,7 @@ std::pair<double, int> zErrorOnCovered(const Image& img, double z) {
 }  // namespace
 
 TEST(Fig11Depth, AnalyticPlaneHasItsDisplayZ) {
-  const auto scene = planeScene();
+  const auto scene = fixtures::greyPlaneAt5mm(20);
   const auto [err, covered] = zErrorOnCovered(planeReference(*scene, Placement{}), 5.0);
   std::printf("[ measured ] analytic plane at z = 5: %d covered pixels, max |Z - 5| = %.2e mm\n", covered, err);
   EXPECT_GT(covered, 400);
@@ -82,7 +67,7 @@ TEST(Fig11Depth, AnalyticPlaneHasItsDisplayZ) {
 }
 
 TEST(Fig11Depth, AnalyticPlaneWithPlacementScaleTwoIsAtTen) {
-  const auto scene = planeScene();
+  const auto scene = fixtures::greyPlaneAt5mm(20);
   Placement pl;
   pl.scale = Vec3d(2.0);
   const auto [err, covered] = zErrorOnCovered(planeReference(*scene, pl), 10.0);
@@ -93,7 +78,7 @@ TEST(Fig11Depth, AnalyticPlaneWithPlacementScaleTwoIsAtTen) {
 }
 
 TEST(Fig11Depth, TakingTheDepthChannelsOffLeavesTheColourAsItWas) {
-  const auto scene = planeScene();
+  const auto scene = fixtures::greyPlaneAt5mm(20);
   Image withDepth = planeReference(*scene, Placement{});
   const Image original = withDepth;
   const ReferenceDepth d = takeDepthChannels(withDepth);

@@ -11,6 +11,7 @@
 #include "camera/camera_config.h"
 #include "camera/camera_model.h"
 #include "experiments/pose_comparison.h"
+#include "grey_plane.h"
 #include "scene/analytic_scene.h"
 #include "view/display_pose.h"
 #include "view/reference_renderer.h"
@@ -19,23 +20,7 @@ using namespace inim;
 
 namespace {
 
-// A 40 x 40 mm grey square at z = 5 mm lit head-on by a distant point light.
-std::unique_ptr<AnalyticScene> planeScene() {
-  return AnalyticScene::fromJson(Json::parse(R"({
-    "units": "mm",
-    "integrator": {"type": "direct"},
-    "materials": {"grey": {"type": "diffuse", "reflectance": 0.5}},
-    "objects": [{"id": 1, "name": "plane z=5", "type": "rectangle", "size_mm": [40, 40],
-                 "translate_mm": [0, 0, 5], "material": "grey"}],
-    "lights": [{"name": "distant", "type": "point", "position_mm": [0, 0, 1000000], "spectrum": 1.0,
-                "scale": 3.14159265358979e12}]
-  })"), "plane-test-scene.json");
-}
 
-const CameraSensor& sensor() {
-  static const CameraDescription c = loadCameraDescription("alvium-1800-u-500c");
-  return c.sensor;
-}
 
 // 2 px lenslets (sigma 0.58 px, reach 2 px at z = 0); at z = 5 the EI pixel's cone adds
 // 10 px (sigma 3.0 px, reach 10 px).
@@ -58,7 +43,7 @@ bool samePixel(const Image& a, const Image& b, int x, int y) {
 }  // namespace
 
 TEST(PoseComparison, ComparedReferenceIsTheFullReferenceWhereItIsRead) {
-  const auto scene = planeScene();
+  const auto scene = fixtures::greyPlaneAt5mm(40);
   const DisplayPose pose{0.0, 0.0, 200.0};
   PinholeCameraModel cam(SensorGeometry{64, 48, 0.05}, pose.cameraPose(), 20.0, false);
   const BandLimit band = testBand();
@@ -68,8 +53,8 @@ TEST(PoseComparison, ComparedReferenceIsTheFullReferenceWhereItIsRead) {
   s.spp = 8;
   s.progress = false;
   s.depth = true;
-  ViewResult full = renderReference(*scene, Transform(), cam, sensor(), s);
-  ViewResult compared = renderComparedReference(*scene, Transform(), cam, sensor(), s, mask, band);
+  ViewResult full = renderReference(*scene, Transform(), cam, fixtures::defaultSensor(), s);
+  ViewResult compared = renderComparedReference(*scene, Transform(), cam, fixtures::defaultSensor(), s, mask, band);
   std::printf("[ measured ] rays: full %llu, compared %llu\n", (unsigned long long)full.stats.tracedRays,
               (unsigned long long)compared.stats.tracedRays);
   EXPECT_LT(compared.stats.tracedRays, full.stats.tracedRays * 3 / 4);
@@ -94,7 +79,7 @@ TEST(PoseComparison, ComparedReferenceIsTheFullReferenceWhereItIsRead) {
   ReferenceSettings one = s;
   one.spp = 1;
   one.depth = false;
-  const Image single = renderReference(*scene, Transform(), cam, sensor(), one).image;
+  const Image single = renderReference(*scene, Transform(), cam, fixtures::defaultSensor(), one).image;
   for (auto [x, y] : {std::pair{1, 1}, {62, 46}}) {
     EXPECT_TRUE(samePixel(single, compared.image, x, y));
     EXPECT_FALSE(samePixel(full.image, compared.image, x, y));
@@ -104,7 +89,7 @@ TEST(PoseComparison, ComparedReferenceIsTheFullReferenceWhereItIsRead) {
 TEST(PoseComparison, OneSampleOutsideAMapIsTheFirstOfTheFullSet) {
   // A reference with 1 sample outside a map equals, there, a 1-sample reference; inside, the
   // 8-sample one (the samples of a pixel do not depend on how many are drawn).
-  const auto scene = planeScene();
+  const auto scene = fixtures::greyPlaneAt5mm(40);
   const DisplayPose pose{0.0, 0.0, 200.0};
   PinholeCameraModel cam(SensorGeometry{32, 24, 0.05}, pose.cameraPose(), 20.0, false);
   const PixelMask mask = [] {
@@ -118,14 +103,14 @@ TEST(PoseComparison, OneSampleOutsideAMapIsTheFirstOfTheFullSet) {
   ReferenceSettings s;
   s.spp = 8;
   s.progress = false;
-  const Image full = renderReference(*scene, Transform(), cam, sensor(), s).image;
+  const Image full = renderReference(*scene, Transform(), cam, fixtures::defaultSensor(), s).image;
   ReferenceSettings one = s;
   one.spp = 1;
-  const Image single = renderReference(*scene, Transform(), cam, sensor(), one).image;
+  const Image single = renderReference(*scene, Transform(), cam, fixtures::defaultSensor(), one).image;
   ReferenceSettings mixed = s;
   mixed.fullSamples = &mask.on;
   mixed.sppElsewhere = 1;
-  const Image both = renderReference(*scene, Transform(), cam, sensor(), mixed).image;
+  const Image both = renderReference(*scene, Transform(), cam, fixtures::defaultSensor(), mixed).image;
   int wrong = 0;
   for (int y = 0; y < 24; ++y)
     for (int x = 0; x < 32; ++x)
@@ -134,7 +119,7 @@ TEST(PoseComparison, OneSampleOutsideAMapIsTheFirstOfTheFullSet) {
 }
 
 TEST(PoseComparison, NoPixelOfTheMaskLeavesTheReferenceInFull) {
-  const auto scene = planeScene();
+  const auto scene = fixtures::greyPlaneAt5mm(40);
   const DisplayPose pose{0.0, 0.0, 200.0};
   PinholeCameraModel cam(SensorGeometry{32, 24, 0.05}, pose.cameraPose(), 20.0, false);
   PixelMask empty;
@@ -143,8 +128,8 @@ TEST(PoseComparison, NoPixelOfTheMaskLeavesTheReferenceInFull) {
   ReferenceSettings s;
   s.spp = 4;
   s.progress = false;
-  const ViewResult full = renderReference(*scene, Transform(), cam, sensor(), s);
-  const ViewResult compared = renderComparedReference(*scene, Transform(), cam, sensor(), s, empty, testBand());
+  const ViewResult full = renderReference(*scene, Transform(), cam, fixtures::defaultSensor(), s);
+  const ViewResult compared = renderComparedReference(*scene, Transform(), cam, fixtures::defaultSensor(), s, empty, testBand());
   ASSERT_EQ(full.image.data.size(), compared.image.data.size());
   EXPECT_EQ(std::memcmp(full.image.data.data(), compared.image.data.data(), full.image.data.size() * sizeof(float)), 0);
 }
