@@ -67,10 +67,9 @@ std::vector<uint8_t> grownMask(const PixelMask& mask, int reach) {
 
 // The pixels the filter reads from the mask's pixels at their depths, not yet in `full`.
 std::vector<uint8_t> missingReach(const Image& ref, const PixelMask& mask, const BandLimit& b,
-                                  const std::vector<uint8_t>& full, size_t& count) {
+                                  const std::vector<uint8_t>& full) {
   const int W = ref.width, H = ref.height, z = ref.channelIndex("Z"), a = ref.channelIndex("A");
   std::vector<uint8_t> out(full.size(), 0);
-  count = 0;
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
       if (!mask.counts(x, y)) continue;
@@ -79,7 +78,7 @@ std::vector<uint8_t> missingReach(const Image& ref, const PixelMask& mask, const
       for (int v = std::max(0, y - r); v <= std::min(H - 1, y + r); ++v)
         for (int u = std::max(0, x - r); u <= std::min(W - 1, x + r); ++u) {
           const size_t i = size_t(v) * W + u;
-          if (!full[i] && !out[i]) out[i] = 1, ++count;
+          if (!full[i]) out[i] = 1;
         }
     }
   return out;
@@ -96,9 +95,8 @@ ViewResult renderComparedReference(const Field& field, const Transform& fieldToD
   first.fullSamples = &full;
   ViewResult r = renderReference(field, fieldToDisplay, camera, sensor, first);
   if (!s.depth) return r;
-  size_t count = 0;
-  const std::vector<uint8_t> missing = missingReach(r.image, mask, b, full, count);
-  if (count == 0) return r;
+  const std::vector<uint8_t> missing = missingReach(r.image, mask, b, full);
+  if (std::find(missing.begin(), missing.end(), uint8_t(1)) == missing.end()) return r;
   ReferenceSettings second = s;
   second.fullSamples = &missing;
   second.sppElsewhere = 0;

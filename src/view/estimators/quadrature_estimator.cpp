@@ -2,13 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <string>
 
 #include "core/convex_polygon.h"
 #include "core/error.h"
-#include "core/parallel.h"
 #include "view/estimators/lenslet_map.h"
 #include "view/estimators/sample_tracer.h"
 #include "view/view_renderer.h"

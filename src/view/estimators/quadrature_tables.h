@@ -2,7 +2,7 @@
 // The Quadrature estimator's per-block aperture tables and block cameras (aperture_table.h,
 // block_camera.h), each built once, when a pixel of its block is first rendered. A
 // QuadratureTableCache shares them between renders through one camera that differ only in the
-// display (the error budget's rungs at one pose, and the pose's own view): a block's table
+// display (the error budget's rungs at one pose): a block's table
 // depends on the camera and on the key below, not on the panel, the EIA or the MLA's optics.
 //
 //   auto cache = std::make_shared<QuadratureTableCache>(camera);
