@@ -24,18 +24,21 @@ Image bandLimited(const Image& reference, const std::vector<float>& depthZ, cons
   Image out = reference;
   const int W = reference.width, H = reference.height, C = reference.numChannels();
   parallelForRange(H, [&](int64_t y0, int64_t y1) {
-    std::vector<double> acc(static_cast<size_t>(C), 0.0);
+    std::vector<double> acc(static_cast<size_t>(C), 0.0), g;
     for (int y = int(y0); y < int(y1); ++y)
       for (int x = 0; x < W; ++x) {
         const size_t i = size_t(y) * W + x;
         const double sigma = b.sigmaPx(coverage[i] >= 0.5f ? double(depthZ[i]) : 0.0);
         const int r = std::max(1, int(std::ceil(3.0 * sigma)));
+        // The Gaussian is separable: g[d + r] = exp(k d^2), one exponential per offset, not per tap.
         const double k = -0.5 / (sigma * sigma);
+        g.resize(size_t(2 * r + 1));
+        for (int d = -r; d <= r; ++d) g[size_t(d + r)] = std::exp(k * double(d * d));
         std::fill(acc.begin(), acc.end(), 0.0);
         double wsum = 0.0;
         for (int v = std::max(0, y - r); v <= std::min(H - 1, y + r); ++v)
           for (int u = std::max(0, x - r); u <= std::min(W - 1, x + r); ++u) {
-            const double w = std::exp(k * double((u - x) * (u - x) + (v - y) * (v - y)));
+            const double w = g[size_t(v - y + r)] * g[size_t(u - x + r)];
             const float* p = &reference.data[(size_t(v) * W + u) * size_t(C)];
             for (int c = 0; c < C; ++c) acc[size_t(c)] += w * p[c];
             wsum += w;

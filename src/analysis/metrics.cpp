@@ -365,7 +365,7 @@ DeltaEStats deltaE2000(const Image& a, const Image& b, const std::string& space,
 const char* metricValuesName(MetricValues v) { return v == MetricValues::Encoded ? "encoded" : "linear"; }
 
 ImageMetrics compareImages(const Image& a, const Image& b, const CompareOptions& opt, const PixelMask* mask,
-                           const std::string& nameA, const std::string& nameB) {
+                           const std::string& nameA, const std::string& nameB, std::vector<float>* deltaEMap) {
   requireSameSize(a, b, nameA, nameB);
   if (mask) requireMaskFits(*mask, a.width, a.height);
   if (!(opt.peak > 0.0) || !std::isfinite(opt.peak))
@@ -387,7 +387,9 @@ ImageMetrics compareImages(const Image& a, const Image& b, const CompareOptions&
   const SsimResult s = ssim(ca, cb, so, mask);
   m.ssim = s.value;
   m.ssimWindows = s.windows;
-  m.deltaE = deltaEStats(deltaE2000Map(a, b, opt.spaceA, opt.spaceB, opt.whiteLuminance), a.width, a.height, mask);
+  std::vector<float> de = deltaE2000Map(a, b, opt.spaceA, opt.spaceB, opt.whiteLuminance);
+  m.deltaE = deltaEStats(de, a.width, a.height, mask);
+  if (deltaEMap) *deltaEMap = std::move(de);
   {
     const Image ra = colorImage(a, nameA), rb = colorImage(b, nameB);
     double se = 0.0, sum = 0.0;

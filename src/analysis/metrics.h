@@ -162,10 +162,11 @@ struct ImageMetrics {
 };
 
 // Every metric of A against B. Sizes must agree (InputError naming nameA and nameB) and the
-// mask must fit (InputError naming its source).
+// mask must fit (InputError naming its source). `deltaEMap`: also gives the per-pixel CIEDE2000
+// map the statistics were taken from (deltaE2000Map, every pixel), for callers that plot or bin it.
 ImageMetrics compareImages(const Image& a, const Image& b, const CompareOptions& opt = {},
                            const PixelMask* mask = nullptr, const std::string& nameA = "A",
-                           const std::string& nameB = "B");
+                           const std::string& nameB = "B", std::vector<float>* deltaEMap = nullptr);
 // Reads both files (readImage: NaN/Inf are rejected) and the optional mask file.
 ImageMetrics compareImageFiles(const std::string& pathA, const std::string& pathB, const CompareOptions& opt = {},
                                const std::string& maskPath = "");

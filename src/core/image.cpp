@@ -60,7 +60,7 @@ std::vector<unsigned char> toBytes(const std::vector<float>& data) {
 
 void writeImage(const Image& img, const std::string& path) { writeImage(img, path, {}); }
 
-void writeImage(const Image& img, const std::string& path, const ImageNumbers& numbers) {
+void writeImage(const Image& img, const std::string& path, const ImageNumbers& numbers, ExrCompression compression) {
   throwIfInterrupted();
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw std::runtime_error("cannot create image writer for " + path + ": " + OIIO::geterror());
@@ -72,7 +72,7 @@ void writeImage(const Image& img, const std::string& path, const ImageNumbers& n
   spec.channelnames = img.channels;
   int a = img.channelIndex("A");
   spec.alpha_channel = a;
-  if (isExr) spec.attribute("compression", "zip");
+  if (isExr) spec.attribute("compression", compression == ExrCompression::Zip ? "zip" : "none");
   for (const auto& [name, value] : numbers)
     if (isExr) spec.attribute(name, OIIO::TypeDesc::DOUBLE, &value);
   // OIIO stamps EXRs with the time of writing unless DateTime is set; empty writes none, so

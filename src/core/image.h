@@ -27,7 +27,11 @@ void writeImage(const Image& img, const std::string& path);
 // Named numbers kept in an EXR's header with the image (e.g. "inim:exposure", the factor an EIA
 // was made with, which `inim view --reference` needs to expose its reference alike).
 using ImageNumbers = std::vector<std::pair<std::string, double>>;
-void writeImage(const Image& img, const std::string& path, const ImageNumbers& numbers);
+// EXR compression: zip (lossless) by default; none for images whose every mantissa is noise, which
+// zip cannot shrink (a synthesized EIA: 4 % smaller for ~3 s of a core at 3840 x 1644).
+enum class ExrCompression { Zip, None };
+void writeImage(const Image& img, const std::string& path, const ImageNumbers& numbers,
+                ExrCompression compression = ExrCompression::Zip);
 // A number written so; nullopt when the file has no such header entry.
 std::optional<double> readImageNumber(const std::string& path, const std::string& name);
 // Reads any image OIIO knows. `rejectNonFinite`: throw InputError naming the file if any

@@ -60,7 +60,7 @@ void writeOutputs(const EiaRunSettings& s, EiaRunResult& r, const Field& field, 
   }
   const Image& eia = r.synthesis.eia;
   std::vector<std::future<void>> writes;
-  writes.push_back(std::async(std::launch::async, [&] { writeImage(eia, exrTmp, {{kEiaExposureHeader, r.synthesis.stats.exposureUsed}}); }));
+  writes.push_back(std::async(std::launch::async, [&] { writeEiaExr(eia, r.synthesis.stats.exposureUsed, exrTmp); }));
   writes.push_back(std::async(std::launch::async, [&] { writeImage(encodeForPanel(eia, r.display.panel.eotf), pngTmp); }));
   if (!previewTmp.empty())
     writes.push_back(std::async(std::launch::async, [&] { writeImage(r.preview.image, previewTmp); }));

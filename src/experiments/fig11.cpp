@@ -159,12 +159,14 @@ class Fig11Run {
     if (mask.count() == 0) return v;
     CompareOptions copt;
     copt.spaceA = copt.spaceB = "srgb";
-    v.metrics = compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference_" + v.name, "view_" + v.name);
+    std::vector<float> deltaE;  // per pixel, for the error map and the depth bins
+    v.metrics =
+        compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference_" + v.name, "view_" + v.name, &deltaE);
     v.hasMetrics = true;
-    record(v, img, mask);
+    record(v, img, mask, deltaE);
     compareWithBandLimited(v, img, limited, refDepth, mask, *camera);
     v.depthBins = depth.addPose(v.name, v.label, {img.refExposed, img.recExposed, img.refSrgb, img.recSrgb}, refDepth,
-                                mask, metrics[v.name]);
+                                mask, deltaE, metrics[v.name]);
     if (budget_) budgets.push_back(poseBudgetOf(v, *camera, r.rec.image, img, mask, limited));
     return v;
   }
@@ -185,13 +187,13 @@ class Fig11Run {
     CompareOptions copt;
     copt.spaceA = copt.spaceB = "srgb";
     const Image limitedSrgb = cameraRgbToSrgb(limited, in_.camera.sensor);
-    v.bandLimitedMetrics =
-        compareImages(limitedSrgb, img.recSrgb, copt, &mask, "band-limited reference_" + v.name, "view_" + v.name);
+    std::vector<float> de;
+    v.bandLimitedMetrics = compareImages(limitedSrgb, img.recSrgb, copt, &mask, "band-limited reference_" + v.name,
+                                         "view_" + v.name, &de);
     Json& m = metrics[v.name];
     m["band_limited"] = metricsJson(v.bandLimitedMetrics);
     m["band_limited"]["filter"] = bandLimitJson(bandLimitOf(camera));
     if (!depth.present) return;
-    const std::vector<float> de = deltaE2000Map(limitedSrgb, img.recSrgb, "srgb", "srgb");
     v.depthBinsBandLimited = errorVsDepth(limited, img.recExposed, depth.z, depth.coverage, &mask, {}, &de);
     m["depth_error_band_limited"] = depthBinsJson(v.depthBinsBandLimited);
   }
@@ -201,14 +203,14 @@ class Fig11Run {
                              in_.distanceMm, camera);
   }
 
-  void record(const Fig11View& v, const PoseImages& img, const PixelMask& mask) {
+  void record(const Fig11View& v, const PoseImages& img, const PixelMask& mask, const std::vector<float>& deltaE) {
     Json mj = metricsJson(v.metrics);
     mj["rot_h_deg"] = v.pose.rotHDeg;
     mj["rot_v_deg"] = v.pose.rotVDeg;
     mj["reconstruction_seconds"] = v.reconstructionSeconds;
     metrics[v.name] = mj;
     rows.push_back(metricsCsvRow(v.name, v.metrics));
-    sheetSlot(sheet, v.name) = ViewPair{v.label, img.refSrgb, img.recSrgb, errorMap(deltaE2000Of(img), img, mask)};
+    sheetSlot(sheet, v.name) = ViewPair{v.label, img.refSrgb, img.recSrgb, errorMap(deltaE, img, mask)};
   }
 
   // The budget's rungs at this pose, against the same reference and a second one (another
@@ -320,7 +322,7 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   try {
     const std::string eiaExr = run.out("eia.exr"), eiaPng = run.out("eia.png");
     background.run([&] {
-      writeImage(eia.eia, eiaExr, {{kEiaExposureHeader, eia.stats.exposureUsed}});
+      writeEiaExr(eia.eia, eia.stats.exposureUsed, eiaExr);
       writeImage(encodeForPanel(eia.eia, in.display.panel.eotf), eiaPng);
     });
     for (size_t i = 0; i < poses.size(); ++i) {

@@ -57,11 +57,11 @@ DepthMarks depthMarksFor(const Display& display) {
 
 std::vector<DepthBin> Fig11DepthError::addPose(const std::string& name, const std::string& label,
                                                const Fig11PoseImages& img, const ReferenceDepth& depth,
-                                               const PixelMask& mask, Json& poseMetrics) {
+                                               const PixelMask& mask, const std::vector<float>& deltaE,
+                                               Json& poseMetrics) {
   if (!depth.present) return {};
-  // CIEDE2000 of the sRGB images, as fig11's metrics compare them.
-  const std::vector<float> de = deltaE2000Map(img.refSrgb, img.recSrgb, "srgb", "srgb");
-  std::vector<DepthBin> bins = errorVsDepth(img.refLinear, img.recLinear, depth.z, depth.coverage, &mask, {}, &de);
+  std::vector<DepthBin> bins =
+      errorVsDepth(img.refLinear, img.recLinear, depth.z, depth.coverage, &mask, {}, &deltaE);
   poseMetrics["depth_error"] = depthBinsJson(bins);
   writeCsv(out("depth_error_" + name + ".csv"), depthBinsCsvHeader(), depthBinsCsvRows(bins));
   Image planes(depth.width, depth.height, {"A", "Z"});

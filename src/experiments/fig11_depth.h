@@ -12,7 +12,7 @@
 // depth_error.png; metrics.json gains "depth_error" per pose.
 //
 //   ReferenceDepth d = takeDepthChannels(ref.image);        // before exposing
-//   depth.addPose(name, label, {refLin, recLin, refSrgb, recSrgb}, d, mask, metrics[name]);
+//   depth.addPose(name, label, {refLin, recLin, refSrgb, recSrgb}, d, mask, deltaE, metrics[name]);
 //   depth.writeFigure(display);                              // after the last pose
 #include <filesystem>
 #include <string>
@@ -52,10 +52,12 @@ class Fig11DepthError {
  public:
   Fig11DepthError(OutputSet& outputs, std::filesystem::path dir) : outputs_(outputs), dir_(std::move(dir)) {}
 
-  // Bins the pose's error (default binning), writes its CSV and depth EXR, sets
-  // poseMetrics["depth_error"] and returns the bins. Nothing (empty) when `depth` is not present.
+  // Bins the pose's error (default binning; `deltaE`: the CIEDE2000 map of the sRGB images, as
+  // compareImages gives it), writes its CSV and depth EXR, sets poseMetrics["depth_error"] and
+  // returns the bins. Nothing (empty) when `depth` is not present.
   std::vector<DepthBin> addPose(const std::string& name, const std::string& label, const Fig11PoseImages& img,
-               const ReferenceDepth& depth, const PixelMask& mask, Json& poseMetrics);
+                                const ReferenceDepth& depth, const PixelMask& mask, const std::vector<float>& deltaE,
+                                Json& poseMetrics);
   // depth_error.png, a curve per pose added; nothing when none was.
   void writeFigure(const Display& display);
 

@@ -22,10 +22,6 @@ PoseImages exposeAlike(const Image& rec, const Image& ref, double refToCdM2, con
   return p;
 }
 
-std::vector<float> deltaE2000Of(const PoseImages& img) {
-  return deltaE2000Map(img.refSrgb, img.recSrgb, "srgb", "srgb");
-}
-
 Image errorMap(const std::vector<float>& deltaE, const PoseImages& img, const PixelMask& mask) {
   return errorMapImage(deltaE, img.refSrgb.width, img.refSrgb.height, kErrorMapMax, &mask.on);
 }

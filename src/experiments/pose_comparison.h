@@ -35,7 +35,6 @@ PoseImages exposeAlike(const Image& rec, const Image& ref, double refToCdM2, con
 // The per-pixel error maps of fig11's contact sheet and of `inim view --reference`: CIEDE2000 of
 // the sRGB images, shown 0 to kErrorMapMax (viridis; larger errors saturate), grey off the mask.
 constexpr double kErrorMapMax = 50.0;
-std::vector<float> deltaE2000Of(const PoseImages& img);
 Image errorMap(const std::vector<float>& deltaE, const PoseImages& img, const PixelMask& mask);
 
 // The display's sampling limit for this camera (analysis/band_limit.h): the lenslet pitch, the

@@ -132,12 +132,12 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
 
   CompareOptions copt;
   copt.spaceA = copt.spaceB = "srgb";
-  r.metrics = compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference", "view");
+  std::vector<float> de;
+  r.metrics = compareImages(img.refSrgb, img.recSrgb, copt, &mask, "reference", "view", &de);
   r.hasMetrics = true;
   const Image limited = bandLimitedReference(img.refExposed, depth, band);
   r.bandLimitedMetrics = compareImages(cameraRgbToSrgb(limited, cs.desc.sensor), img.recSrgb, copt, &mask,
                                        "band-limited reference", "view");
-  const std::vector<float> de = deltaE2000Of(img);
   if (depth.present) r.depthBins = errorVsDepth(img.refExposed, img.recExposed, depth.z, depth.coverage, &mask, {}, &de);
   writeImage(errorMap(de, img, mask), out(sibling(s.camera.out, "_error.png")));
 

@@ -263,6 +263,10 @@ void addSceneWarnings(double vcpMm, SynthesisStats& st) {
 
 }  // namespace
 
+void writeEiaExr(const Image& eia, double exposureUsed, const std::string& path) {
+  writeImage(eia, path, {{kEiaExposureHeader, exposureUsed}}, ExrCompression::None);
+}
+
 SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field& field,
                               const SynthesisSettings& s) {
   const auto t0 = Clock::now();

@@ -64,6 +64,8 @@ struct SynthesisSettings {
 // The EXR header entry that keeps SynthesisStats::exposureUsed with the EIA (`inim eia`, `inim
 // fig11`), so that a later `inim view --reference` exposes its reference in the same units.
 constexpr const char* kEiaExposureHeader = "inim:exposure";
+// Writes an EIA so (uncompressed: its values are Monte Carlo noise to the last bit).
+void writeEiaExr(const Image& eia, double exposureUsed, const std::string& path);
 
 struct SynthesisStats {
   uint64_t displayRays = 0;
