@@ -1,6 +1,7 @@
 // Wavelength sampling and the Monte Carlo spectral estimator.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -48,6 +49,19 @@ TEST(Sampled, StratifiedWavelengths) {
     EXPECT_LE(v[i], kLambdaMax);
     EXPECT_FLOAT_EQ(v.pdf()[i], SampledWavelengths::visiblePdf(v[i]));
   }
+  // Over the whole range of u (the pdf from the inverse CDF's argument, not from lambda): the
+  // pdf is visiblePdf at the wavelength drawn, and lambda stays in the visible range.
+  double worst = 0.0;
+  for (int k = 0; k <= 4000; ++k) {
+    const auto s = SampledWavelengths::sampleVisible(float(k) / 4000.0f * 0.25f);
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_GE(s[i], kLambdaMin);
+      EXPECT_LE(s[i], kLambdaMax);
+      const double p = SampledWavelengths::visiblePdf(s[i]);
+      worst = std::max(worst, std::abs(double(s.pdf()[i]) - p) / p);
+    }
+  }
+  EXPECT_LT(worst, 2e-6);
   EXPECT_NEAR(v[1], SampledWavelengths::sampleVisibleWavelength(0.05f), 1e-3f);
 }
 
