@@ -73,6 +73,13 @@ void writeImage(const Image& img, const std::string& path, const ImageNumbers& n
   int a = img.channelIndex("A");
   spec.alpha_channel = a;
   if (isExr) spec.attribute("compression", compression == ExrCompression::Zip ? "zip" : "none");
+  if (ext == ".png") {
+    // zlib level 3 without row filters (libpng's PNG_FILTER_NONE, 0x08): 1.5-3 x faster than
+    // libpng's default (level 6, adaptive filters) on inim's images, within -7 % (contact sheet,
+    // plots) to +17 % (smooth views) of the size.
+    spec.attribute("png:compressionLevel", 3);
+    spec.attribute("png:filter", 0x08);
+  }
   for (const auto& [name, value] : numbers)
     if (isExr) spec.attribute(name, OIIO::TypeDesc::DOUBLE, &value);
   // OIIO stamps EXRs with the time of writing unless DateTime is set; empty writes none, so

@@ -88,6 +88,12 @@ std::optional<ViewPair>& sheetSlot(Fig11Views& sheet, const std::string& name) {
   return sheet.centre;
 }
 
+ViewCameraOptions cameraOptions(const Fig11Settings& s) {
+  ViewCameraOptions co;
+  co.width = s.width;
+  return co;
+}
+
 // A pose's two renders, before they are compared.
 struct PoseRenders {
   Fig11View view;
@@ -100,8 +106,11 @@ struct PoseRenders {
 // A run: the inputs, the synthesized display and the outputs being collected.
 class Fig11Run {
  public:
-  Fig11Run(const Fig11Settings& s, Inputs& in, const DisplayModel& dm, double refToCdM2, const BudgetScene* budget)
-      : s_(s), in_(in), dm_(dm), refToCdM2_(refToCdM2), budget_(budget), dir_(s.outDir) {}
+  // `firstCamera`: the first pose's camera (made while the EIA is); the others are it moved.
+  Fig11Run(const Fig11Settings& s, Inputs& in, const DisplayModel& dm, double refToCdM2, const BudgetScene* budget,
+           std::unique_ptr<CameraModel> firstCamera)
+      : s_(s), in_(in), dm_(dm), refToCdM2_(refToCdM2), budget_(budget), dir_(s.outDir),
+        firstCamera_(std::move(firstCamera)) {}
 
   std::vector<PoseBudget> budgets;
 
@@ -120,10 +129,7 @@ class Fig11Run {
     v.name = p.name;
     v.label = p.label;
     v.pose = p.pose;
-    ViewCameraOptions co;
-    co.width = s_.width;
-    r.camera = makeViewCamera(in_.camera, v.pose, co, firstCamera_.get());
-    if (!firstCamera_) firstCamera_ = makeViewCamera(in_.camera, v.pose, co, r.camera.get());
+    r.camera = makeViewCamera(in_.camera, v.pose, cameraOptions(s_), firstCamera_.get());
 
     ViewSettings vs;  // the estimator and aperture grid of every view tool
     vs.spp = s_.spp;
@@ -238,12 +244,19 @@ class Fig11Run {
   const BudgetScene* budget_;
   fs::path dir_;
   // The first pose's camera: the others are it moved (makeViewCamera), its lens focused once.
-  // Used by renderPose only (on the run's thread).
-  mutable std::unique_ptr<CameraModel> firstCamera_;
+  std::unique_ptr<CameraModel> firstCamera_;
 
  public:
   Fig11DepthError depth{outputs, dir_};  // after dir_: members are made in this order
 };
+
+// After a failure: the background work finished (its own failure dropped: the first one is thrown).
+void waitQuietly(tbb::task_group& g) {
+  try {
+    g.wait();
+  } catch (...) {
+  }
+}
 
 // budget.json, budget.csv and the waterfall budget.png.
 void writeBudget(Fig11Run& run, const Fig11Result& result) {
@@ -270,6 +283,16 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   result.fieldPath = in.field.path;
   if (in.calibration) result.calibration = describeCalibration(s.calibrationPath, *in.calibration);
 
+  std::vector<NamedPose> poses;
+  for (const NamedPose& p : fig11Poses(s.angleDeg, in.distanceMm))
+    if (s.poses.empty() || std::find(s.poses.begin(), s.poses.end(), p.name) != s.poses.end()) poses.push_back(p);
+  // The first pose's camera (its lens focused, its exit pupil scanned: serial work) is made
+  // while the EIA is synthesized.
+  std::unique_ptr<CameraModel> firstCamera;
+  tbb::task_group background;
+  if (!poses.empty())
+    background.run([&] { firstCamera = makeViewCamera(in.camera, poses.front().pose, cameraOptions(s)); });
+
   // 1. The EIA, as `inim eia` makes it.
   SynthesisSettings ss;
   ss.placement = in.placement;
@@ -277,7 +300,15 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   ss.seed = s.seed;
   ss.autoExposure = true;
   ss.correction = in.calibration;
-  SynthesisResult eia = synthesizeEia(in.layout, in.display.panel, *in.field.field, ss);
+  std::optional<SynthesisResult> synthesized;
+  try {
+    synthesized = synthesizeEia(in.layout, in.display.panel, *in.field.field, ss);
+  } catch (...) {
+    waitQuietly(background);
+    throw;
+  }
+  background.wait();
+  const SynthesisResult& eia = *synthesized;
   result.eiaWidth = eia.eia.width, result.eiaHeight = eia.eia.height, result.eiaSeconds = eia.stats.seconds;
   if (observer.eiaDone) observer.eiaDone(result);
   DisplayModel dm = makeDisplayModel(in.display, in.layout, eia.eia, "(synthesized EIA)", s.mla);
@@ -303,13 +334,10 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   // 2. Five poses: reconstruction and reference through the same camera.
   // Writing and comparing are mostly serial: each pose is written and compared while the next
   // one renders (one comparison at a time, in pose order, so the outputs do not depend on it).
-  Fig11Run run(s, in, dm, eia.stats.exposureUsed * in.display.panel.peakLuminanceCdM2, s.budget ? &scene : nullptr);
-  std::vector<NamedPose> poses;
-  for (const NamedPose& p : fig11Poses(s.angleDeg, in.distanceMm))
-    if (s.poses.empty() || std::find(s.poses.begin(), s.poses.end(), p.name) != s.poses.end()) poses.push_back(p);
+  Fig11Run run(s, in, dm, eia.stats.exposureUsed * in.display.panel.peakLuminanceCdM2, s.budget ? &scene : nullptr,
+               std::move(firstCamera));
   std::vector<PoseRenders> renders(poses.size());
   std::vector<Fig11View> compared(poses.size());
-  tbb::task_group background;
   auto report = [&](size_t i) {
     result.views.push_back(std::move(compared[i]));
     renders[i] = PoseRenders{};
@@ -335,10 +363,7 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
     if (!poses.empty()) report(poses.size() - 1);
   } catch (...) {
     background.cancel();
-    try {
-      background.wait();
-    } catch (...) {
-    }
+    waitQuietly(background);
     throw;
   }
   result.budgets = run.budgets;
