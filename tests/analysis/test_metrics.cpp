@@ -317,6 +317,23 @@ TEST(DeltaE2000, StatsOfAKnownMap) {
   EXPECT_NEAR(t.max, d, 1e-5 * d);
 }
 
+// The map compareImages hands out is the one its statistics come from: every pixel's CIEDE2000
+// (also those off the mask), as deltaE2000Map gives it.
+TEST(DeltaE2000, CompareImagesGivesTheMapOfItsStatistics) {
+  const int w = 31, h = 23;
+  Image a = testImage(w, h, 71), b = addNoise(a, 0.05f, 72);
+  PixelMask m = patternMask(w, h);
+  CompareOptions o;
+  o.spaceA = o.spaceB = "srgb";
+  std::vector<float> map;
+  const ImageMetrics r = compareImages(a, b, o, &m, "A", "B", &map);
+  EXPECT_EQ(map, deltaE2000Map(a, b, "srgb", "srgb"));
+  const DeltaEStats s = deltaEStats(map, w, h, &m);
+  EXPECT_EQ(r.deltaE.mean, s.mean);
+  EXPECT_EQ(r.deltaE.p95, s.p95);
+  EXPECT_EQ(r.deltaE.max, s.max);
+}
+
 // ---------------------------------------------------------------------------------------
 // Masks
 
