@@ -2,7 +2,8 @@
 // to its level-0 preview ready (one query ray per lenslet, PNG encoded), as the page sees it
 // over HTTP less the transport: the default scene, the shipped Gaussian splats, and a trained
 // model when --field-model gives one. Each iteration moves the field 1 mm in z and back, so
-// every preview is new; the diagram the worker draws next competes with it, as it does live.
+// every preview is new. No diagram is asked for, so none is drawn (the page asks for one at most
+// every 400 ms during a drag, on a thread at the lowest priority).
 // The model is placed as its own placement says, or as --field-scale, --field-rotate-deg and
 // --field-translate-mm say (a field filling the display costs more than one beside empty space).
 // Target: <= 100 ms per update (10 updates per second) on 2 cores.

@@ -132,6 +132,10 @@ ImageAnswer PlaceSession::image(ImageKind kind, uint64_t revision, std::chrono::
     a.png = r.png, a.counts = r.counts, a.serverMs = r.serverMs, a.error = r.error;
     return a;
   };
+  if (kind == ImageKind::Diagram && revision > diagramAsked_ && revision <= current_.state.revision) {
+    diagramAsked_ = revision;  // drawn once asked for: see diagramLoop
+    changed_.notify_all();
+  }
   while (true) {
     const bool kept = kind == ImageKind::Level0 || kind == ImageKind::Diagram;
     const Rendered* done = kind == ImageKind::Level0 ? level0Of(revision)
@@ -239,15 +243,17 @@ void PlaceSession::recordLatency(ImageKind kind, Rendered& r, const Snapshot& sn
 }
 
 // The diagram of the newest revision whose level 0 is done (it draws that level 0's hits), in
-// the time the level-0 renders leave: this thread runs at the lowest priority. Like level 0, a
-// diagram under way is finished and kept for its revision while a drag goes on.
+// the time the level-0 renders leave: this thread runs at the lowest priority. It draws only a
+// revision a request has asked for: drawn for every revision of a drag, even niced, it took
+// cores the level-0 renders and the browser needed. Like level 0, a diagram under way is
+// finished and kept for its revision while a drag goes on.
 void PlaceSession::diagramLoop() {
   lowerThisThreadsPriority();
   std::unique_lock<std::mutex> lock(mutex_);
   while (!stop_) {
     const Snapshot snap = current_;
     const Rendered* level0 = level0Of(snap.state.revision);
-    if (diagramOf(snap.state.revision) || !level0) {
+    if (diagramOf(snap.state.revision) || !level0 || diagramAsked_ < snap.state.revision) {
       changed_.wait(lock);
       continue;
     }

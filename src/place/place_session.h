@@ -5,10 +5,11 @@
 // A change of state (putState) makes a new revision. The worker renders level 0 of the newest
 // revision at once, then levels 1 and 2 once the state has been still for `quietMs`; a newer
 // revision interrupts it at its next batch of rays (place_preview.h). A second thread, at the
-// lowest priority, draws the diagram of the newest revision whose level 0 is done, so the
-// diagram never holds up a level 0. A request for an image waits until that image of its
-// revision is ready, and is answered "stale" at once when the state has moved on, so the page
-// never waits for old work; a level 0 or diagram already under way is finished and served.
+// lowest priority, draws the diagram of the newest revision whose level 0 is done, once a
+// request has asked for it, so the diagram never holds up a level 0. A request for an image
+// waits until that image of its revision is ready, and is answered "stale" at once when the
+// state has moved on, so the page never waits for old work; a level 0 or diagram already under
+// way is finished and served.
 //
 //   PlaceSession session(options);              // InputError for a bad field, display or run file
 //   Json st = session.putState(R"({"vcp_mm": 80})");  // InputError (400) changes nothing
@@ -126,6 +127,7 @@ class PlaceSession {
   std::optional<std::pair<uint64_t, Rendered>> lastLevel0_;  // the newest finished, by revision
   std::optional<uint64_t> diagramInFlight_;                    // the same for the diagram
   std::optional<std::pair<uint64_t, Rendered>> lastDiagram_;
+  uint64_t diagramAsked_ = 0;         // the newest revision a request asked the diagram of
   std::optional<double> exposure_;    // fixed by the first level-0 frame, so brightness holds still
   std::vector<std::deque<double>> latencies_;
   bool stop_ = false;

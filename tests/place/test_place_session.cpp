@@ -7,6 +7,7 @@
 #include <condition_variable>
 #include <filesystem>
 #include <mutex>
+#include <thread>
 
 #include "core/output_file.h"
 #include "fields/field_factory.h"
@@ -131,4 +132,20 @@ TEST(PlaceSession, ARevisionWhoseLevel0NeverStartedIsStaleAtOnce) {
   EXPECT_EQ(g.status(ImageKind::Level0, r3), S::Ready);
   EXPECT_EQ(g.status(ImageKind::Diagram, r3), S::Ready);
   EXPECT_EQ(g.status(ImageKind::Diagram, r1), S::Stale);
+}
+
+// The diagram is drawn only for a revision a request asked for: a drag's revisions that no one
+// asks about cost no drawing (revision 0's may be drawn at start).
+TEST(PlaceSession, ADiagramIsDrawnOnlyOnceAskedFor) {
+  GatedSession g;
+  g.gate->setOpen(true);
+  const uint64_t r1 = g.move(1.0), r2 = g.move(2.0);
+  EXPECT_EQ(g.status(ImageKind::Level0, r2), S::Ready);
+  std::this_thread::sleep_for(300ms);  // time enough for an unasked diagram to be drawn
+  const auto drawn = [&] { return g.session->latency()["diagram"]["count"].get<int>(); };
+  const int before = drawn();
+  EXPECT_LE(before, 1);
+  EXPECT_EQ(g.status(ImageKind::Diagram, r1), S::Stale);  // older, and never drawn
+  EXPECT_EQ(g.status(ImageKind::Diagram, r2), S::Ready);
+  EXPECT_EQ(drawn(), before + 1);
 }
