@@ -162,8 +162,8 @@ function readPixels(page, selector) {
   return page.evaluate((sel) => {
     const img = document.querySelector(sel);
     const c = document.createElement('canvas');
-    c.width = img.naturalWidth;
-    c.height = img.naturalHeight;
+    c.width = img.naturalWidth ?? img.width;  // an <img>, or a <canvas>
+    c.height = img.naturalHeight ?? img.height;
     const g = c.getContext('2d', {willReadFrequently: true});
     g.drawImage(img, 0, 0);
     const d = g.getImageData(0, 0, c.width, c.height).data;

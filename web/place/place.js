@@ -1,7 +1,7 @@
 /* inim place: the placement page (docs/place-api.md). Plain JavaScript, no framework.
  *
  * Element ids (tests/web/place_browser.mjs relies on them):
- *   #preview0            level-0 lenslet preview (K x L PNG), #preview1 its level-1 overlay (4K x 4L)
+ *   #preview0            level-0 lenslet preview (a K x L canvas), #preview1 its level-1 overlay (4K x 4L)
  *   #preview2            level 2, the viewer's view; #diagram the top and side diagrams
  *   #preview-level #preview-meta #counts #latency-readout #preview2-meta #diagram-meta
  *   #tx-range #tx-num  #ty-range #ty-num  #tz-range #tz-num     translation, mm
@@ -106,6 +106,29 @@
     img.dataset.url = url;
     if (old) URL.revokeObjectURL(old);
     return true;
+  }
+
+  // Level 0 goes to a canvas, decoded in the page (createImageBitmap) with the PNG's values as
+  // they are: an <img> from a blob URL took a round trip through the browser process per frame,
+  // 7-10 ms of each input's latency on two busy cores and the worst of its spikes.
+  async function drawBlob(canvas, blob, wanted = () => true) {
+    let bitmap;
+    try {
+      bitmap = await createImageBitmap(blob, {colorSpaceConversion: 'none', premultiplyAlpha: 'none'});
+    } catch (e) {
+      throw new Error('undecodable image');
+    }
+    try {
+      if (!wanted()) return false;
+      if (canvas.width !== bitmap.width || canvas.height !== bitmap.height) {
+        canvas.width = bitmap.width;
+        canvas.height = bitmap.height;
+      }
+      canvas.getContext('2d').drawImage(bitmap, 0, 0);
+      return true;
+    } finally {
+      bitmap.close();
+    }
   }
 
   // ---------------------------------------------------------------- the live channel
@@ -510,7 +533,7 @@
 
   async function showLevel0Image(a) {
     if (a.revision <= shown.level0) return;
-    if (!(await showBlob($('preview0'), a.blob, () => a.revision > shown.level0))) return;
+    if (!(await drawBlob($('preview0'), a.blob, () => a.revision > shown.level0))) return;
     shown.level0 = a.revision;
     if (shown.level1 !== a.revision) $('preview1').hidden = true;
     $('preview2').classList.toggle('stale', shown.level2 !== a.revision);
@@ -593,14 +616,26 @@
     window.inimPainted = {revision: rev, level: 2};
   }
 
-  // The diagram follows every revision; one request at a time, always for the newest.
-  const diagramLoad = {busy: false, wanted: -1};
+  // The diagram follows every revision; one request at a time, always for the newest. While the
+  // controls move, a load starts at most every DIAGRAM_DRAG_MS: decoding and drawing the 900-px
+  // diagram on every frame took the cores the lenslet preview needs (on 2 cores the drag's
+  // input-to-paint p95 was 120-160 ms with it, 75-90 ms without).
+  const DIAGRAM_DRAG_MS = 400;
+  const diagramLoad = {busy: false, wanted: -1, startedAt: -Infinity, timer: null};
 
   function refreshDiagram(rev) {
     diagramLoad.wanted = Math.max(diagramLoad.wanted, rev);
     if (diagramLoad.busy || shown.diagram >= diagramLoad.wanted) return;
+    const wait = isIdle() ? 0 : diagramLoad.startedAt + DIAGRAM_DRAG_MS - performance.now();
+    clearTimeout(diagramLoad.timer);
+    diagramLoad.timer = null;
+    if (wait > 0) {
+      diagramLoad.timer = setTimeout(() => refreshDiagram(diagramLoad.wanted), wait);
+      return;
+    }
     const target = diagramLoad.wanted;
     diagramLoad.busy = true;
+    diagramLoad.startedAt = performance.now();
     loadDiagram(target)
       .catch(showError)
       .finally(() => {
