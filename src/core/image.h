@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/large_buffer.h"
+
 namespace inim {
 
 struct Image {
@@ -14,7 +16,7 @@ struct Image {
 
   Image() = default;
   Image(int w, int h, std::vector<std::string> ch)
-      : width(w), height(h), channels(std::move(ch)), data(size_t(w) * h * channels.size(), 0.0f) {}
+      : width(w), height(h), channels(std::move(ch)), data(largeVector(size_t(w) * h * channels.size(), 0.0f)) {}
   int numChannels() const { return int(channels.size()); }
   float& at(int x, int y, int c) { return data[(size_t(y) * width + x) * channels.size() + c]; }
   float at(int x, int y, int c) const { return data[(size_t(y) * width + x) * channels.size() + c]; }

@@ -6,6 +6,7 @@
 
 #include "camera/lens_system.h"
 #include "core/error.h"
+#include "core/large_buffer.h"
 #include "spectral/cie.h"
 
 namespace inim {
@@ -60,7 +61,7 @@ PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& i
   const bool named = img.channelIndex("R") >= 0 && img.channelIndex("G") >= 0 && img.channelIndex("B") >= 0;
   for (int c = 0; c < 3; ++c) ch[c] = named ? img.channelIndex(channelName(c)) : c;
   const int x0 = panelSized ? 0 : L.panelCol0, y0 = panelSized ? 0 : L.panelRow0;
-  drive_.assign(size_t(panelW_) * panelH_ * 3, 0.0f);
+  drive_ = largeVector(size_t(panelW_) * panelH_ * 3, 0.0f);  // read at random by every view
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x)
       for (int c = 0; c < 3; ++c) {
