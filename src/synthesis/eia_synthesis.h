@@ -4,7 +4,8 @@
 //   EiLayout L = computeLayout(display);
 //   SynthesisSettings s;  s.placement = ...;  s.vcpMm = 100;  s.spp = 1;
 //   SynthesisResult r = synthesizeEia(L, display.panel, field, s);
-//   writeImage(r.eia, "eia.exr");  writeImage(encodeForPanel(r.eia, display.panel.eotf), "eia.png");
+//   writeEiaExr(r.eia, r.stats.exposureUsed, "eia.exr");
+//   writeImage(encodeForPanel(r.eia, display.panel.eotf), "eia.png");
 //
 // For every display ray (rays/pinhole_rays.h, one per EI pixel, or SynthesisSettings::displayRays,
 // e.g. real-lens rays) the field is queried along the
