@@ -127,6 +127,10 @@ PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& i
     if (p.channel >= 0 && p.channel < kNumPrimaries) channelPolys_[size_t(p.channel)].push_back(int(polys_.size()));
     polys_.push_back(std::move(p));
   }
+  for (int c = 0; c < kNumPrimaries; ++c) {
+    const std::vector<int>& own = channelPolys_[size_t(c)];
+    if (own.size() == 1 && polys_[size_t(own[0])].rect) channelRect_[size_t(c)] = &polys_[size_t(own[0])];
+  }
 
   for (int c = 0; c < kNumPrimaries; ++c) primary_[size_t(c)] = primarySpectrum(panel.primaries[size_t(c)]);
   const double yWhite = spectrumToXYZ(SumSpectrum(primary_)).y;
@@ -272,17 +276,13 @@ std::array<float, kNumPrimaries> PanelEmitter::boxAveragePx(double u0, double v0
     if (e.channel >= 0) out[size_t(e.channel)] = e.weight;
     return out;
   }
-  // Only the part on the panel can emit.
-  const double cu0 = std::max(u0, 0.0), cv0 = std::max(v0, 0.0);
-  const double cu1 = std::min(u1, double(panelW_)), cv1 = std::min(v1, double(panelH_));
-  if (!(cu1 > cu0 && cv1 > cv0)) return out;
+  BoxTiles b;  // only the part on the panel can emit
+  if (!boxTiles(u0, v0, u1, v1, b)) return out;
   double sum[kNumPrimaries] = {0.0, 0.0, 0.0};
-  const int tu0 = int(std::floor(cu0 / tileW_)), tu1 = int(std::floor(cu1 / tileW_));
-  const int tv0 = int(std::floor(cv0 / tileH_)), tv1 = int(std::floor(cv1 / tileH_));
-  for (int tv = tv0; tv <= tv1; ++tv)
-    for (int tu = tu0; tu <= tu1; ++tu) {
+  for (int tv = b.tv0; tv <= b.tv1; ++tv)
+    for (int tu = b.tu0; tu <= b.tu1; ++tu) {
       const double ou = double(tu) * tileW_, ov = double(tv) * tileH_;
-      const double bu0 = cu0 - ou, bu1 = cu1 - ou, bv0 = cv0 - ov, bv1 = cv1 - ov;  // box in tile coordinates
+      const double bu0 = b.cu0 - ou, bu1 = b.cu1 - ou, bv0 = b.cv0 - ov, bv1 = b.cv1 - ov;  // in tile coordinates
       for (const Poly& p : polys_) {
         if (bu1 <= p.u0 || bu0 >= p.u1 || bv1 <= p.v0 || bv0 >= p.v1) continue;
         const int col = tu * tileW_ + p.pixU, row = tv * tileH_ + p.pixV;
@@ -323,36 +323,44 @@ bool PanelEmitter::sideOverlaps(double b0, double b1, int t0, int t1, int w, flo
   return true;
 }
 
-float PanelEmitter::channelBoxAveragePx(int c, double u0, double v0, double u1, double v1) const {
-  const double area = (u1 - u0) * (v1 - v0);
-  if (!(area > 0.0)) return channelDrivePx(c, 0.5 * (u0 + u1), 0.5 * (v0 + v1));
-  const double cu0 = std::max(u0, 0.0), cv0 = std::max(v0, 0.0);
-  const double cu1 = std::min(u1, double(panelW_)), cv1 = std::min(v1, double(panelH_));
-  if (!(cu1 > cu0 && cv1 > cv0)) return 0.0f;
+bool PanelEmitter::boxTiles(double u0, double v0, double u1, double v1, BoxTiles& b) const {
+  b.cu0 = std::max(u0, 0.0), b.cv0 = std::max(v0, 0.0);
+  b.cu1 = std::min(u1, double(panelW_)), b.cv1 = std::min(v1, double(panelH_));
+  if (!(b.cu1 > b.cu0 && b.cv1 > b.cv0)) return false;
+  // x / 1 is x: the division only for tiles of several pixels (it is most of a small box's cost).
+  auto tile = [](double x, int w) { return int(w == 1 ? std::floor(x) : std::floor(x / w)); };
+  b.tu0 = tile(b.cu0, tileW_), b.tu1 = tile(b.cu1, tileW_);
+  b.tv0 = tile(b.cv0, tileH_), b.tv1 = tile(b.cv1, tileH_);
+  return true;
+}
+
+bool PanelEmitter::channelColumns(int c, const BoxTiles& b, SideOverlaps& cols) const {
+  const Poly* p = channelRect_[size_t(c)];
+  return p && sideOverlaps(b.cu0, b.cu1, b.tu0, b.tu1, tileW_, p->u0, p->u1, p->pixU, panelW_, cols);
+}
+
+bool PanelEmitter::channelRows(int c, const BoxTiles& b, SideOverlaps& rows) const {
+  const Poly* p = channelRect_[size_t(c)];
+  return p && sideOverlaps(b.cv0, b.cv1, b.tv0, b.tv1, tileH_, p->v0, p->v1, p->pixV, panelH_, rows);
+}
+
+double PanelEmitter::overlapSum(int c, const SideOverlaps& cols, const SideOverlaps& rows) const {
   double sum = 0.0;
-  const int tu0 = int(std::floor(cu0 / tileW_)), tu1 = int(std::floor(cu1 / tileW_));
-  const int tv0 = int(std::floor(cv0 / tileH_)), tv1 = int(std::floor(cv1 / tileH_));
-  // One rectangle of the channel per tile (the stripe layouts): its overlap with the box is a
-  // column's length times a row's, each found once (the hot path of the Quadrature estimator).
-  const std::vector<int>& own = channelPolys_[size_t(c)];
-  if (own.size() == 1 && polys_[size_t(own[0])].rect) {
-    const Poly& p = polys_[size_t(own[0])];
-    SideOverlaps cols, rows;
-    if (sideOverlaps(cu0, cu1, tu0, tu1, tileW_, p.u0, p.u1, p.pixU, panelW_, cols) &&
-        sideOverlaps(cv0, cv1, tv0, tv1, tileH_, p.v0, p.v1, p.pixV, panelH_, rows)) {
-      for (int j = 0; j < rows.n; ++j) {
-        const float* row = drive_.data() + size_t(rows.index[j]) * size_t(panelW_) * 3 + size_t(c);
-        double s = 0.0;
-        for (int i = 0; i < cols.n; ++i) s += cols.length[i] * double(row[size_t(cols.index[i]) * 3]);
-        sum += rows.length[j] * s;
-      }
-      return float(sum / area);
-    }
+  for (int j = 0; j < rows.n; ++j) {
+    const float* row = drive_.data() + size_t(rows.index[j]) * size_t(panelW_) * 3 + size_t(c);
+    double s = 0.0;
+    for (int i = 0; i < cols.n; ++i) s += cols.length[i] * double(row[size_t(cols.index[i]) * 3]);
+    sum += rows.length[j] * s;
   }
-  for (int tv = tv0; tv <= tv1; ++tv)
-    for (int tu = tu0; tu <= tu1; ++tu) {
+  return sum;
+}
+
+double PanelEmitter::boxSumByPolygons(int c, const BoxTiles& b) const {
+  double sum = 0.0;
+  for (int tv = b.tv0; tv <= b.tv1; ++tv)
+    for (int tu = b.tu0; tu <= b.tu1; ++tu) {
       const double ou = double(tu) * tileW_, ov = double(tv) * tileH_;
-      const double bu0 = cu0 - ou, bu1 = cu1 - ou, bv0 = cv0 - ov, bv1 = cv1 - ov;
+      const double bu0 = b.cu0 - ou, bu1 = b.cu1 - ou, bv0 = b.cv0 - ov, bv1 = b.cv1 - ov;
       for (int i : channelPolys_[size_t(c)]) {
         const Poly& p = polys_[size_t(i)];
         if (bu1 <= p.u0 || bu0 >= p.u1 || bv1 <= p.v0 || bv0 >= p.v1) continue;
@@ -367,7 +375,55 @@ float PanelEmitter::channelBoxAveragePx(int c, double u0, double v0, double u1, 
         if (a > 0.0) sum += a * drive;
       }
     }
-  return float(sum / area);
+  return sum;
+}
+
+float PanelEmitter::channelBoxAveragePx(int c, double u0, double v0, double u1, double v1) const {
+  const double area = (u1 - u0) * (v1 - v0);
+  if (!(area > 0.0)) return channelDrivePx(c, 0.5 * (u0 + u1), 0.5 * (v0 + v1));
+  BoxTiles b;
+  if (!boxTiles(u0, v0, u1, v1, b)) return 0.0f;
+  // One rectangle of the channel per tile (the stripe layouts): its overlap with the box is a
+  // column's length times a row's, each found once (the hot path of the Quadrature estimator).
+  SideOverlaps cols, rows;
+  if (channelColumns(c, b, cols) && channelRows(c, b, rows)) return float(overlapSum(c, cols, rows) / area);
+  return float(boxSumByPolygons(c, b) / area);
+}
+
+std::array<float, kNumPrimaries> PanelEmitter::channelBoxAveragesPx(double u0, double v0, double u1,
+                                                                   double v1) const {
+  std::array<float, kNumPrimaries> out{0.0f, 0.0f, 0.0f};
+  auto byChannel = [&] {
+    for (int c = 0; c < kNumPrimaries; ++c) out[size_t(c)] = channelBoxAveragePx(c, u0, v0, u1, v1);
+    return out;
+  };
+  const double area = (u1 - u0) * (v1 - v0);
+  if (!(area > 0.0) || !(channelRect_[0] && channelRect_[1] && channelRect_[2])) return byChannel();
+  BoxTiles b;
+  if (!boxTiles(u0, v0, u1, v1, b)) return out;
+  SideOverlaps cols[kNumPrimaries], rows[kNumPrimaries];
+  const SideOverlaps* colsOf[kNumPrimaries];
+  const SideOverlaps* rowsOf[kNumPrimaries];
+  for (int c = 0; c < kNumPrimaries; ++c) {
+    // A channel whose rectangle spans the same columns (rows) as an earlier one's shares them.
+    const Poly& p = *channelRect_[size_t(c)];
+    colsOf[c] = rowsOf[c] = nullptr;
+    for (int e = 0; e < c; ++e) {
+      const Poly& q = *channelRect_[size_t(e)];
+      if (!colsOf[c] && p.u0 == q.u0 && p.u1 == q.u1 && p.pixU == q.pixU) colsOf[c] = colsOf[e];
+      if (!rowsOf[c] && p.v0 == q.v0 && p.v1 == q.v1 && p.pixV == q.pixV) rowsOf[c] = rowsOf[e];
+    }
+    if (!colsOf[c]) {
+      if (!channelColumns(c, b, cols[c])) return byChannel();
+      colsOf[c] = &cols[c];
+    }
+    if (!rowsOf[c]) {
+      if (!channelRows(c, b, rows[c])) return byChannel();
+      rowsOf[c] = &rows[c];
+    }
+  }
+  for (int c = 0; c < kNumPrimaries; ++c) out[size_t(c)] = float(overlapSum(c, *colsOf[c], *rowsOf[c]) / area);
+  return out;
 }
 
 float PanelEmitter::radiance(const Point3& p, const Vec3& d, float lambdaNm) const {

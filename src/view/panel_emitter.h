@@ -108,6 +108,10 @@ class PanelEmitter {
   std::array<float, kNumPrimaries> boxAveragePx(double u0, double v0, double u1, double v1) const;
   // The same for one channel only (its own subpixels: the Quadrature estimator's lookup).
   float channelBoxAveragePx(int c, double u0, double v0, double u1, double v1) const;
+  // channelBoxAveragePx of every channel over one box, equal to three calls bit for bit; a
+  // stripe layout's channels share the box's tiles and rows, and their columns where their
+  // rectangles coincide (the Quadrature estimator's lookup when nothing is dispersive).
+  std::array<float, kNumPrimaries> channelBoxAveragesPx(double u0, double v0, double u1, double v1) const;
   // The drive value of channel c at a point (panel pixel coordinates): lookupPx(u, v).weight
   // when lookupPx(u, v).channel == c, else 0 (up to points exactly on a rectangle's edge).
   // Tests only channel c's subpixels, axis-aligned rectangles by their bounds: the cheap
@@ -149,6 +153,20 @@ class PanelEmitter {
   };
   static bool sideOverlaps(double b0, double b1, int t0, int t1, int w, float r0, float r1, int pix, int limit,
                            SideOverlaps& out);
+  // A box clipped to the panel and the tiles it touches; false when it misses the panel.
+  struct BoxTiles {
+    double cu0, cv0, cu1, cv1;
+    int tu0, tu1, tv0, tv1;
+  };
+  bool boxTiles(double u0, double v0, double u1, double v1, BoxTiles& b) const;
+  // Channel c's rectangle overlaps with a box's columns and rows (the stripe layouts: one
+  // rectangle of each channel per tile); false when the channel has another shape or the box
+  // spans more than kMaxBoxTiles tiles.
+  bool channelColumns(int c, const BoxTiles& b, SideOverlaps& cols) const;
+  bool channelRows(int c, const BoxTiles& b, SideOverlaps& rows) const;
+  // Sum over the overlaps of (column length x row length x channel c's drive).
+  double overlapSum(int c, const SideOverlaps& cols, const SideOverlaps& rows) const;
+  double boxSumByPolygons(int c, const BoxTiles& b) const;
   float angular(float cosTheta) const;
 
   Panel panel_;
@@ -158,6 +176,7 @@ class PanelEmitter {
   std::vector<float> drive_;  // panelW x panelH x 3, clamped to [0, 1]
   std::vector<Poly> polys_;
   std::array<std::vector<int>, kNumPrimaries> channelPolys_;  // indices into polys_ per channel
+  std::array<const Poly*, kNumPrimaries> channelRect_{};       // the channel's one rectangle, if so
   std::array<SpectrumPtr, kNumPrimaries> primary_;
   std::array<double, kNumPrimaries> areaFactor_{};
   double l0_ = 1.0;

@@ -365,6 +365,40 @@ TEST(PanelEmitter, ChannelBoxAverageMatchesTheAllChannelBoxAverage) {
   }
 }
 
+// The three-channel lookup is the quadrature's when nothing is dispersive: it must give the
+// one-channel lookups' values bit for bit (shared rows and columns, not a new sum), for a
+// stripe layout, whole-pixel squares (the error budget's uniform pixels, all columns shared)
+// and a diamond layout (no shared path).
+TEST(PanelEmitter, ThreeChannelBoxAverageIsTheOneChannelAverages) {
+  for (const char* layout : {"stripe", "uniform", "diamond"}) {
+    Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+    if (std::string(layout) == "diamond") d.panel.subpixels = diamondLayout(0.8);
+    if (std::string(layout) == "uniform") {
+      d.panel.subpixels.subpixels.clear();
+      for (int c = 0; c < 3; ++c)
+        d.panel.subpixels.subpixels.push_back({c, {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}}});
+    }
+    const EiLayout L = computeLayout(d);
+    PanelEmitter e(d.panel, L, patternEia(L), "pattern.exr", 1.2);
+    Rng rng(11, 2);
+    int differing = 0, nonZero = 0;
+    for (int i = 0; i < 5000; ++i) {
+      const double u = -1.0 + (L.panelW + 2.0) * rng.uniformDouble(), v = -1.0 + (L.panelH + 2.0) * rng.uniformDouble();
+      const double reach = i % 10 == 0 ? 50.0 : i % 3 == 0 ? 8.0 : 2.0;  // past kMaxBoxTiles too
+      const double hu = i % 97 == 0 ? 0.0 : reach * rng.uniformDouble() * rng.uniformDouble();
+      const double hv = reach * rng.uniformDouble() * rng.uniformDouble();
+      const auto three = e.channelBoxAveragesPx(u - hu, v - hv, u + hu, v + hv);
+      for (int c = 0; c < 3; ++c) {
+        const float one = e.channelBoxAveragePx(c, u - hu, v - hv, u + hu, v + hv);
+        differing += three[size_t(c)] != one;
+        nonZero += one != 0.0f;
+      }
+    }
+    EXPECT_EQ(differing, 0) << layout;
+    EXPECT_GT(nonZero, 5000) << layout;  // the boxes mostly see the panel
+  }
+}
+
 TEST(PanelEmitter, ChannelLookupMatchesLookupPx) {
   for (bool diamond : {false, true}) {
     Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);

@@ -426,21 +426,29 @@ bool QuadratureTile::addEmission(const PolygonMoments& piece, const ApertureTabl
   const PanelEmitter& panel = context_.panel;
   const size_t n = table.points.size();
   const double cu = landing.uv.x + shift.x, cv = landing.uv.y + shift.y;
+  double e[kNumPrimaries] = {0.0, 0.0, 0.0};
+  if (!offsets) {
+    for (int c = 0; c < kNumPrimaries; ++c)
+      if (primary < 0 || c == primary) e[c] = table.total * panel.channelDrivePx(c, landing.uv.x, landing.uv.y);
+  } else if (primary >= 0) {
+    for (size_t i = 0; i < n; ++i) {
+      const double u = cu + offsets[2 * i], v = cv + offsets[2 * i + 1];
+      e[primary] +=
+          double(table.points[i].w) * panel.channelBoxAveragePx(primary, u - halfU, v - halfV, u + halfU, v + halfV);
+    }
+  } else {
+    // All three channels over the same boxes: one lookup finds their tiles once.
+    for (size_t i = 0; i < n; ++i) {
+      const double u = cu + offsets[2 * i], v = cv + offsets[2 * i + 1];
+      const std::array<float, kNumPrimaries> a = panel.channelBoxAveragesPx(u - halfU, v - halfV, u + halfU, v + halfV);
+      for (int c = 0; c < kNumPrimaries; ++c) e[c] += double(table.points[i].w) * a[size_t(c)];
+    }
+  }
   bool emitted = false;
   for (int c = 0; c < kNumPrimaries; ++c) {
-    if (primary >= 0 && c != primary) continue;
-    double e = 0.0;
-    if (offsets) {
-      for (size_t i = 0; i < n; ++i) {
-        const double u = cu + offsets[2 * i], v = cv + offsets[2 * i + 1];
-        e += double(table.points[i].w) * panel.channelBoxAveragePx(c, u - halfU, v - halfV, u + halfU, v + halfV);
-      }
-    } else {
-      e = table.total * panel.channelDrivePx(c, landing.uv.x, landing.uv.y);
-    }
-    if (e == 0.0) continue;
+    if (e[c] == 0.0) continue;
     emitted = true;
-    rgb += (scale * e) * (primary >= 0 ? estimator_.nodes_.rgb[c][size_t(node)] : context_.channels.channelRgb(c));
+    rgb += (scale * e[c]) * (primary >= 0 ? estimator_.nodes_.rgb[c][size_t(node)] : context_.channels.channelRgb(c));
   }
   return emitted;
 }
