@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/output_file.h"
+#include "core/parallel.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -89,11 +90,20 @@ void ColorSystem::convertImage(Image& img, const std::string& from, const std::s
   if (img.numChannels() < 3)
     throw std::invalid_argument("convertImage: image has fewer than 3 channels");
   auto p = cpuProcessor(from, to);
+  const auto* processor = static_cast<const OCIO::CPUProcessor*>(p.get());
   const ptrdiff_t chan = sizeof(float);
   const ptrdiff_t px = chan * img.numChannels();
-  OCIO::PackedImageDesc desc(img.data.data(), img.width, img.height, 3, OCIO::BIT_DEPTH_F32,
-                             chan, px, px * img.width);
-  static_cast<const OCIO::CPUProcessor*>(p.get())->apply(desc);
+  // Bands of whole rows in parallel: OCIO converts each row alike wherever a band starts, so the
+  // result is the same at any thread count.
+  parallelForRange(
+      img.height,
+      [&](int64_t y0, int64_t y1) {
+        float* first = img.data.data() + size_t(y0) * size_t(img.width) * size_t(img.numChannels());
+        OCIO::PackedImageDesc desc(first, img.width, long(y1 - y0), 3, OCIO::BIT_DEPTH_F32, chan, px,
+                                   px * img.width);
+        processor->apply(desc);
+      },
+      nullptr, 16);
 }
 
 Mat3 rgbToXYZMatrix(const Vec2& r, const Vec2& g, const Vec2& b, const Vec2& white) {

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "core/parallel.h"
+#include "core/rng.h"
 #include "spectral/color.h"
 
 namespace inim {
@@ -96,6 +98,31 @@ TEST(Color, ConvertImage) {
     for (int x = 0; x < 3; ++x) {
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(img.at(x, y, c), srgbEncode(ref.at(x, y, c)), 1e-4f);
       EXPECT_EQ(img.at(x, y, 3), 0.7f);  // alpha untouched
+    }
+}
+
+// convertImage works on bands of rows in parallel: a large image (many bands, a partial last
+// one, an alpha channel) comes out the same at one thread as at several, and every pixel as
+// the pixel converted alone.
+TEST(Color, ConvertImageIsTheSameAtAnyThreadCount) {
+  Image img(331, 97, {"R", "G", "B", "A"});
+  Rng rng(3, 1);
+  for (float& v : img.data) v = float(1.2 * rng.uniformDouble() - 0.1);
+  Image one = img, many = img;
+  {
+    ThreadLimit limit(1);
+    cs().convertImage(one, "cie_xyz_d65", "srgb");
+  }
+  {
+    ThreadLimit limit(4);
+    cs().convertImage(many, "cie_xyz_d65", "srgb");
+  }
+  EXPECT_EQ(one.data, many.data);
+  for (int y : {0, 48, 96})
+    for (int x : {0, 165, 330}) {
+      const Vec3 alone = cs().convert(Vec3(img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)), "cie_xyz_d65", "srgb");
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(many.at(x, y, c), alone[c], 1e-5f);
+      EXPECT_EQ(many.at(x, y, 3), img.at(x, y, 3));  // alpha untouched
     }
 }
 
