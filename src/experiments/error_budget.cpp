@@ -75,9 +75,10 @@ bool isFullChain(const BudgetRung& r) { return r.subpixels && r.realMla && r.cov
 // the colour chain, through the observer (by sensorSwap when exact, else rendered).
 class RungRenders {
  public:
-  RungRenders(const BudgetScene& s, const CameraModel& camera, const Image* fullChainView)
+  RungRenders(const BudgetScene& s, const CameraModel& camera, const Image* fullChainView,
+              std::shared_ptr<QuadratureTableCache> tables)
       : s_(s), camera_(camera), observer_(cieObserverSensor(s.camera->sensor.geometry())),
-        tables_(std::make_shared<QuadratureTableCache>(camera)) {
+        tables_(tables ? std::move(tables) : std::make_shared<QuadratureTableCache>(camera)) {
     if (fullChainView) cameraViews_[geometryKey(rung("full", "", true, true, true, true))] = *fullChainView;
   }
 
@@ -176,7 +177,7 @@ std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names) {
 PoseBudget poseBudget(const BudgetScene& s, const CameraModel& camera, const Image& reference,
                       const Image& secondReference, double exposure, const PixelMask& mask,
                       const std::vector<BudgetRung>& rungs, const Image* fullChainView,
-                      const Image* bandLimitedReference) {
+                      const Image* bandLimitedReference, std::shared_ptr<QuadratureTableCache> tables) {
   const CameraSensor& sensor = s.camera->sensor;
   const Image refSrgb = cameraRgbToSrgb(reference, sensor);
   CompareOptions copt;
@@ -186,7 +187,7 @@ PoseBudget poseBudget(const BudgetScene& s, const CameraModel& camera, const Ima
                                "reference (another seed)");
   std::optional<Image> limitedSrgb;
   if (bandLimitedReference) limitedSrgb = cameraRgbToSrgb(*bandLimitedReference, sensor);
-  RungRenders renders(s, camera, fullChainView);
+  RungRenders renders(s, camera, fullChainView, std::move(tables));
   std::map<std::string, RungResult> sameConfiguration;  // "+cover_glass" is "-colour_chain"
   auto run = [&](const BudgetRung& r) {
     RungResult out;

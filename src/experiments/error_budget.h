@@ -18,6 +18,7 @@
 //
 //   BudgetScene scene{display, layout, eia, calibratedEia, camera};
 //   PoseBudget b = poseBudget(scene, *cameraModel, reference, secondReference, exposure, mask, budgetRungs());
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,11 +81,13 @@ struct PoseBudget {
 // `fullChainView` (optional): the run's own reconstruction of the uncalibrated EIA (linear,
 // unexposed), reused for the full-chain rung instead of rendering it again.
 // `bandLimitedReference` (optional, exposed like `reference`; analysis/band_limit.h): every rung
-// is also compared with it.
+// is also compared with it. `tables` (optional): the aperture tables of renders through
+// `camera` made before (the run's own view's), which the rungs reuse.
 PoseBudget poseBudget(const BudgetScene& scene, const CameraModel& camera, const Image& reference,
                       const Image& secondReference, double exposure, const PixelMask& mask,
                       const std::vector<BudgetRung>& rungs, const Image* fullChainView = nullptr,
-                      const Image* bandLimitedReference = nullptr);
+                      const Image* bandLimitedReference = nullptr,
+                      std::shared_ptr<QuadratureTableCache> tables = nullptr);
 
 // A render's camera RGB as another sensor would have recorded it, for the quadrature estimator
 // with one wavelength node per primary (sensorSwapIsExact), where each channel's emission becomes

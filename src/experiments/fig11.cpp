@@ -26,6 +26,7 @@
 #include "synthesis/eia_correction.h"
 #include "synthesis/eia_synthesis.h"
 #include "view/reference_renderer.h"
+#include "view/estimators/quadrature_tables.h"
 #include "view/view_camera.h"
 #include "view/view_image.h"
 #include "view/view_renderer.h"
@@ -101,6 +102,7 @@ struct PoseRenders {
   ViewResult rec, ref;
   ReferenceDepth refDepth;
   PixelMask mask;
+  std::shared_ptr<QuadratureTableCache> tables;  // the view's aperture tables, for the budget's rungs
 };
 
 // A run: the inputs, the synthesized display and the outputs being collected.
@@ -135,6 +137,7 @@ class Fig11Run {
     vs.spp = s_.spp;
     vs.apertureGrid = s_.apertureGrid;
     vs.seed = s_.seed;
+    if (budget_) vs.tableCache = r.tables = std::make_shared<QuadratureTableCache>(*r.camera);
     r.rec = renderView(*r.camera, in_.camera.sensor, *dm_.mla, *dm_.panel, dm_.area, vs);
     v.displayInView = r.rec.stats.displayInView();
     v.reconstructionSeconds = r.rec.stats.seconds;
@@ -173,7 +176,7 @@ class Fig11Run {
     compareWithBandLimited(v, img, limited, refDepth, mask, *camera);
     v.depthBins = depth.addPose(v.name, v.label, {img.refExposed, img.recExposed, img.refSrgb, img.recSrgb}, refDepth,
                                 mask, deltaE, metrics[v.name]);
-    if (budget_) budgets.push_back(poseBudgetOf(v, *camera, r.rec.image, img, mask, limited));
+    if (budget_) budgets.push_back(poseBudgetOf(v, *camera, r.rec.image, img, mask, limited, r.tables));
     return v;
   }
 
@@ -222,7 +225,8 @@ class Fig11Run {
   // The budget's rungs at this pose, against the same reference and a second one (another
   // seed) for the noise floor; the run's own view is the full chain when it is one.
   PoseBudget poseBudgetOf(const Fig11View& v, const CameraModel& camera, const Image& rec, const PoseImages& img,
-                          const PixelMask& mask, const Image& limited) {
+                          const PixelMask& mask, const Image& limited,
+                          std::shared_ptr<QuadratureTableCache> tables) {
     ReferenceSettings rs = referenceSettings(s_.seed + 1);
     rs.progress = false;
     rs.fullSamples = &mask.on;  // the floor is measured on the mask only
@@ -232,7 +236,7 @@ class Fig11Run {
     const bool fullChain = !in_.calibration && s_.mla == MlaKind::Real && s_.budgetSpp == s_.spp;
     PoseBudget b = poseBudget(*budget_, camera, img.refExposed, secondExposed, img.exposure, mask,
                               s_.budgetRungs.empty() ? budgetRungs() : selectRungs(s_.budgetRungs),
-                              fullChain ? &rec : nullptr, &limited);
+                              fullChain ? &rec : nullptr, &limited, std::move(tables));
     b.pose = v.name;
     return b;
   }
