@@ -283,8 +283,9 @@ SsimResult ssim(const Image& a, const Image& b, const SsimOptions& opt, const Pi
 // CIEDE2000
 
 std::vector<float> deltaE2000Map(const Image& a, const Image& b, const std::string& spaceA,
-                                 const std::string& spaceB, double whiteLuminance) {
+                                 const std::string& spaceB, double whiteLuminance, const PixelMask* only) {
   requireSameSize(a, b, "first image", "second image");
+  if (only) requireMaskFits(*only, a.width, a.height);
   if (!(whiteLuminance > 0.0) || !std::isfinite(whiteLuminance))
     throw InputError("", "white luminance", std::to_string(whiteLuminance), "a positive, finite value");
   const ColorSystem& cs = ColorSystem::instance();
@@ -303,6 +304,7 @@ std::vector<float> deltaE2000Map(const Image& a, const Image& b, const std::stri
         for (int64_t y = y0; y < y1; ++y)
           for (int x = 0; x < width; ++x) {
             const size_t p = size_t(y) * width + x;
+            if (only && !only->on[p]) continue;
             const Vec3d A(xa.data[p * 3], xa.data[p * 3 + 1], xa.data[p * 3 + 2]);
             const Vec3d B(xb.data[p * 3], xb.data[p * 3 + 1], xb.data[p * 3 + 2]);
             const double d = ciede2000(xyzToLab(A, white), xyzToLab(B, white));
@@ -387,7 +389,9 @@ ImageMetrics compareImages(const Image& a, const Image& b, const CompareOptions&
   const SsimResult s = ssim(ca, cb, so, mask);
   m.ssim = s.value;
   m.ssimWindows = s.windows;
-  std::vector<float> de = deltaE2000Map(a, b, opt.spaceA, opt.spaceB, opt.whiteLuminance);
+  // The whole map when the caller keeps it (an error map), else only what the statistics read.
+  std::vector<float> de =
+      deltaE2000Map(a, b, opt.spaceA, opt.spaceB, opt.whiteLuminance, deltaEMap ? nullptr : mask);
   m.deltaE = deltaEStats(de, a.width, a.height, mask);
   if (deltaEMap) *deltaEMap = std::move(de);
   {

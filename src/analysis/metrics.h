@@ -111,9 +111,11 @@ std::vector<double> ssimGaussian(int windowSize, double sigma);
 // given OpenColorIO colour spaces (lin_rec709, srgb, display_p3, acescg, cie_xyz_d65, ...):
 // each image goes to XYZ (D65) through OCIO, then to CIELAB relative to a D65 white whose
 // luminance is `whiteLuminance` (Y of the reference white in the images' units; 1 by
-// default, i.e. lin_rec709 (1,1,1) is L* = 100). Returns a width x height map (row-major).
+// default, i.e. lin_rec709 (1,1,1) is L* = 100). Returns a width x height map (row-major);
+// with `only`, the map is computed where the mask is on and 0 elsewhere.
 std::vector<float> deltaE2000Map(const Image& a, const Image& b, const std::string& spaceA = "lin_rec709",
-                                 const std::string& spaceB = "lin_rec709", double whiteLuminance = 1.0);
+                                 const std::string& spaceB = "lin_rec709", double whiteLuminance = 1.0,
+                                 const PixelMask* only = nullptr);
 
 struct DeltaEStats {
   double mean = 0.0, p95 = 0.0, max = 0.0;

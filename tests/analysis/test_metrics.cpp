@@ -334,6 +334,29 @@ TEST(DeltaE2000, CompareImagesGivesTheMapOfItsStatistics) {
   EXPECT_EQ(r.deltaE.max, s.max);
 }
 
+// A map on a mask only (what compareImages computes when the caller keeps no map) is the full
+// map there and 0 elsewhere, and compareImages' statistics are the same either way.
+TEST(DeltaE2000, MapOnAMaskIsTheFullMapThere) {
+  const int w = 31, h = 23;
+  Image a = testImage(w, h, 73), b = addNoise(a, 0.05f, 74);
+  PixelMask m = patternMask(w, h);
+  const std::vector<float> full = deltaE2000Map(a, b, "srgb", "srgb"), onMask = deltaE2000Map(a, b, "srgb", "srgb", 1.0, &m);
+  int offMask = 0;
+  for (size_t i = 0; i < full.size(); ++i) {
+    EXPECT_EQ(onMask[i], m.on[i] ? full[i] : 0.0f) << i;
+    offMask += !m.on[i] && full[i] > 0.0f;
+  }
+  EXPECT_GT(offMask, 0);  // the mask does leave out pixels that differ
+  CompareOptions o;
+  o.spaceA = o.spaceB = "srgb";
+  std::vector<float> kept;
+  const ImageMetrics withMap = compareImages(a, b, o, &m, "A", "B", &kept), without = compareImages(a, b, o, &m);
+  EXPECT_EQ(withMap.deltaE.mean, without.deltaE.mean);
+  EXPECT_EQ(withMap.deltaE.p95, without.deltaE.p95);
+  EXPECT_EQ(withMap.deltaE.max, without.deltaE.max);
+  EXPECT_THROW(deltaE2000Map(a, b, "srgb", "srgb", 1.0, &(m = patternMask(w + 1, h))), std::exception);
+}
+
 // ---------------------------------------------------------------------------------------
 // Masks
 
