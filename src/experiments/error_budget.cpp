@@ -54,12 +54,15 @@ std::string skipReason(const BudgetScene& s, const BudgetRung& r) {
   return "";
 }
 
-// The display model of a rung's optics and panel.
-DisplayModel rungDisplay(const BudgetScene& s, const BudgetRung& r) {
+// The display model of a rung's optics and panel; `drive`: the drive table of another rung's
+// emitter of the same EIA (PanelEmitter::driveTable), or null.
+DisplayModel rungDisplay(const BudgetScene& s, const BudgetRung& r,
+                         std::shared_ptr<const std::vector<float>> drive = nullptr) {
   Display d = *s.display;
   if (!r.subpixels) d.panel.subpixels = uniformPixelLayout();
   EmitterSettings emitter;
   emitter.coverGlass = r.coverGlass;
+  emitter.drive = std::move(drive);
   const Image& eia = r.calibrated ? *s.calibratedEia : *s.eia;
   return makeDisplayModel(d, *s.layout, eia, "(EIA)", r.realMla ? MlaKind::Real : MlaKind::Ideal, s.gapMm, emitter);
 }
@@ -87,13 +90,13 @@ class RungRenders {
     const std::string key = geometryKey(r);
     if (r.colourChain) return cameraView(r, key);
     if (!sensorSwapIsExact(s_.view)) {
-      const DisplayModel dm = rungDisplay(s_, r);
+      const DisplayModel dm = display(r);
       return observerAsCamera(render(dm, observer_), s_.camera->sensor);
     }
     note = "the render of the same optics through the camera, seen by the observer (exact 3 x 3)";
     const Image& cam = cameraView(r, key);
     // The matrix depends on the panel's primaries only (any rung's emitter gives it).
-    if (!toObserver_) toObserver_ = sensorSwap(*rungDisplay(s_, r).panel, s_.camera->sensor, observer_);
+    if (!toObserver_) toObserver_ = sensorSwap(*display(r).panel, s_.camera->sensor, observer_);
     return observerAsCamera(transformedRgb(cam, *toObserver_), s_.camera->sensor);
   }
 
@@ -101,9 +104,17 @@ class RungRenders {
   const Image& cameraView(const BudgetRung& r, const std::string& key) {
     auto it = cameraViews_.find(key);
     if (it != cameraViews_.end()) return it->second;
-    const DisplayModel dm = rungDisplay(s_, r);
+    const DisplayModel dm = display(r);
     if (!toObserver_) toObserver_ = sensorSwap(*dm.panel, s_.camera->sensor, observer_);
     return cameraViews_[key] = render(dm, s_.camera->sensor);
+  }
+
+  // The rungs of one EIA read it into a drive table once.
+  DisplayModel display(const BudgetRung& r) {
+    std::shared_ptr<const std::vector<float>>& drive = drives_[r.calibrated];
+    DisplayModel dm = rungDisplay(s_, r, drive);
+    drive = dm.panel->driveTable();
+    return dm;
   }
 
   Image render(const DisplayModel& dm, const CameraSensor& sensor) const {
@@ -117,6 +128,7 @@ class RungRenders {
   const CameraModel& camera_;
   const CameraSensor observer_;
   std::map<std::string, Image> cameraViews_;
+  std::map<bool, std::shared_ptr<const std::vector<float>>> drives_;  // per EIA: calibrated or not
   std::optional<glm::dmat3> toObserver_;
   std::shared_ptr<QuadratureTableCache> tables_;
 };

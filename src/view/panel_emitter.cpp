@@ -61,17 +61,24 @@ PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& i
   const bool named = img.channelIndex("R") >= 0 && img.channelIndex("G") >= 0 && img.channelIndex("B") >= 0;
   for (int c = 0; c < 3; ++c) ch[c] = named ? img.channelIndex(channelName(c)) : c;
   const int x0 = panelSized ? 0 : L.panelCol0, y0 = panelSized ? 0 : L.panelRow0;
-  drive_ = largeVector(size_t(panelW_) * panelH_ * 3, 0.0f);  // read at random by every view
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x)
-      for (int c = 0; c < 3; ++c) {
-        float v = img.at(x, y, ch[c]);
-        if (!std::isfinite(v))
-          throw InputError(file, "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") " + channelName(c),
-                           std::isnan(v) ? "NaN" : "Inf", "finite drive values");
-        if (s.encoded) v = float(panel.eotf.decode(v));
-        drive_[(size_t(y0 + y) * panelW_ + (x0 + x)) * 3 + size_t(c)] = std::clamp(v, 0.0f, 1.0f);
-      }
+  const size_t driveSize = size_t(panelW_) * panelH_ * 3;
+  if (s.drive && s.drive->size() == driveSize) {
+    driveTable_ = s.drive;
+  } else {
+    auto drive = std::make_shared<std::vector<float>>(largeVector(driveSize, 0.0f));  // read at random by every view
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x)
+        for (int c = 0; c < 3; ++c) {
+          float v = img.at(x, y, ch[c]);
+          if (!std::isfinite(v))
+            throw InputError(file, "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") " + channelName(c),
+                             std::isnan(v) ? "NaN" : "Inf", "finite drive values");
+          if (s.encoded) v = float(panel.eotf.decode(v));
+          (*drive)[(size_t(y0 + y) * panelW_ + (x0 + x)) * 3 + size_t(c)] = std::clamp(v, 0.0f, 1.0f);
+        }
+    driveTable_ = std::move(drive);
+  }
+  drive_ = driveTable_->data();
   // Display x = (u - uOff) p, y = (vOff - v) p, with (u, v) continuous panel pixel coordinates.
   uOff_ = 0.5 * L.eiaW + L.panelCol0;
   vOff_ = 0.5 * L.eiaH + L.panelRow0;
@@ -347,7 +354,7 @@ bool PanelEmitter::channelRows(int c, const BoxTiles& b, SideOverlaps& rows) con
 double PanelEmitter::overlapSum(int c, const SideOverlaps& cols, const SideOverlaps& rows) const {
   double sum = 0.0;
   for (int j = 0; j < rows.n; ++j) {
-    const float* row = drive_.data() + size_t(rows.index[j]) * size_t(panelW_) * 3 + size_t(c);
+    const float* row = drive_ + size_t(rows.index[j]) * size_t(panelW_) * 3 + size_t(c);
     double s = 0.0;
     for (int i = 0; i < cols.n; ++i) s += cols.length[i] * double(row[size_t(cols.index[i]) * 3]);
     sum += rows.length[j] * s;

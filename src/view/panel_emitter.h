@@ -39,6 +39,7 @@
 //    T(theta)/T(0), so the peak luminance stays the on-axis value seen through the glass.
 //    A dispersive glass makes the emitter wavelength dependent (isDispersive()).
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,9 @@ struct EmitterSettings {
   double cosExponent = 0.0;  // extra cos^n theta on the panel's angular profile
   bool coverGlass = true;    // model the panel's cover glass when it has one
   bool encoded = false;      // the drive image holds EOTF-encoded values (decode them first)
+  // The driveTable() of an emitter made from the same image and panel (the error budget's
+  // rungs, which differ in the layout or the optics only): shared instead of read again.
+  std::shared_ptr<const std::vector<float>> drive;
 };
 
 // The emitting subpixel at a point and the wavelength-independent part of its radiance:
@@ -135,6 +139,8 @@ class PanelEmitter {
   double panelMinY() const { return (vOff_ - panelH_) * pitch_; }
   double panelMaxY() const { return vOff_ * pitch_; }
   const Panel& panel() const { return panel_; }
+  // The drive values (panelW x panelH x RGB), for EmitterSettings::drive.
+  std::shared_ptr<const std::vector<float>> driveTable() const { return driveTable_; }
 
  private:
   struct Poly {
@@ -173,7 +179,8 @@ class PanelEmitter {
   EmitterSettings settings_;
   int panelW_ = 0, panelH_ = 0, tileW_ = 1, tileH_ = 1;
   double pitch_ = 0.0, uOff_ = 0.0, vOff_ = 0.0, gap_ = 0.0;
-  std::vector<float> drive_;  // panelW x panelH x 3, clamped to [0, 1]
+  std::shared_ptr<const std::vector<float>> driveTable_;  // panelW x panelH x 3, clamped to [0, 1]
+  const float* drive_ = nullptr;                          // its values
   std::vector<Poly> polys_;
   std::array<std::vector<int>, kNumPrimaries> channelPolys_;  // indices into polys_ per channel
   std::array<const Poly*, kNumPrimaries> channelRect_{};       // the channel's one rectangle, if so

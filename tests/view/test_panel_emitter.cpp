@@ -399,6 +399,33 @@ TEST(PanelEmitter, ThreeChannelBoxAverageIsTheOneChannelAverages) {
   }
 }
 
+// An emitter given another's drive table (the budget's rungs: one EIA, other layouts) shares
+// it and reads the same values as one that read the EIA itself; a table of another size is
+// not taken.
+TEST(PanelEmitter, SharedDriveTableReadsAsTheEia) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  const EiLayout L = computeLayout(d);
+  const Image eia = patternEia(L);
+  const PanelEmitter first(d.panel, L, eia, "pattern.exr", 1.2);
+  d.panel.subpixels = diamondLayout(0.8);
+  EmitterSettings shared;
+  shared.drive = first.driveTable();
+  const PanelEmitter reusing(d.panel, L, eia, "pattern.exr", 1.2, shared), reading(d.panel, L, eia, "pattern.exr", 1.2);
+  EXPECT_EQ(reusing.driveTable().get(), first.driveTable().get());
+  EXPECT_NE(reading.driveTable().get(), first.driveTable().get());
+  EXPECT_EQ(*reading.driveTable(), *first.driveTable());
+  Rng rng(13, 2);
+  for (int i = 0; i < 500; ++i) {
+    const double u = L.panelW * rng.uniformDouble(), v = L.panelH * rng.uniformDouble(), h = 3.0 * rng.uniformDouble();
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(reusing.channelBoxAveragePx(c, u - h, v - h, u + h, v + h),
+                reading.channelBoxAveragePx(c, u - h, v - h, u + h, v + h));
+  }
+  EmitterSettings wrongSize;
+  wrongSize.drive = std::make_shared<const std::vector<float>>(7, 1.0f);
+  EXPECT_EQ(*PanelEmitter(d.panel, L, eia, "pattern.exr", 1.2, wrongSize).driveTable(), *first.driveTable());
+}
+
 TEST(PanelEmitter, ChannelLookupMatchesLookupPx) {
   for (bool diamond : {false, true}) {
     Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
