@@ -13,8 +13,9 @@
 //     its mean); pieces whose probes cross a lenslet border use the tile's cached lenslet map;
 //   - aperture: the block's aperture table (aperture_table.h), its points mapped to panel
 //     offsets through the piece's Jacobians; each reads the exact average of its channel's
-//     subpixels (PanelEmitter::channelBoxAveragePx) over a box with the variance of the
-//     piece's image, so an affine map integrates the pixel's area exactly;
+//     subpixels (PanelEmitter::channelBoxAveragePx; all three at once, channelBoxAveragesPx,
+//     when nothing is dispersive) over a box with the variance of the piece's image, so an
+//     affine map integrates the pixel's area exactly;
 //   - spectrum: wavelengthNodes nodes per primary (1: the median of its spectrum, weighted by
 //     the whole spectrum's camera RGB), not tied to strata (that would tie colour to position).
 // Bias: the dropped Fresnel ghosts (paths with >= 2 reflections inside the MLA), the aperture
