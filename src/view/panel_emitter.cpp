@@ -136,7 +136,7 @@ PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& i
   }
   for (int c = 0; c < kNumPrimaries; ++c) {
     const std::vector<int>& own = channelPolys_[size_t(c)];
-    if (own.size() == 1 && polys_[size_t(own[0])].rect) channelRect_[size_t(c)] = &polys_[size_t(own[0])];
+    if (own.size() == 1 && polys_[size_t(own[0])].rect) channelRect_[size_t(c)] = own[0];
   }
 
   for (int c = 0; c < kNumPrimaries; ++c) primary_[size_t(c)] = primarySpectrum(panel.primaries[size_t(c)]);
@@ -342,12 +342,12 @@ bool PanelEmitter::boxTiles(double u0, double v0, double u1, double v1, BoxTiles
 }
 
 bool PanelEmitter::channelColumns(int c, const BoxTiles& b, SideOverlaps& cols) const {
-  const Poly* p = channelRect_[size_t(c)];
+  const Poly* p = channelRect(c);
   return p && sideOverlaps(b.cu0, b.cu1, b.tu0, b.tu1, tileW_, p->u0, p->u1, p->pixU, panelW_, cols);
 }
 
 bool PanelEmitter::channelRows(int c, const BoxTiles& b, SideOverlaps& rows) const {
-  const Poly* p = channelRect_[size_t(c)];
+  const Poly* p = channelRect(c);
   return p && sideOverlaps(b.cv0, b.cv1, b.tv0, b.tv1, tileH_, p->v0, p->v1, p->pixV, panelH_, rows);
 }
 
@@ -405,7 +405,7 @@ std::array<float, kNumPrimaries> PanelEmitter::channelBoxAveragesPx(double u0, d
     return out;
   };
   const double area = (u1 - u0) * (v1 - v0);
-  if (!(area > 0.0) || !(channelRect_[0] && channelRect_[1] && channelRect_[2])) return byChannel();
+  if (!(area > 0.0) || !(channelRect(0) && channelRect(1) && channelRect(2))) return byChannel();
   BoxTiles b;
   if (!boxTiles(u0, v0, u1, v1, b)) return out;
   SideOverlaps cols[kNumPrimaries], rows[kNumPrimaries];
@@ -413,10 +413,10 @@ std::array<float, kNumPrimaries> PanelEmitter::channelBoxAveragesPx(double u0, d
   const SideOverlaps* rowsOf[kNumPrimaries];
   for (int c = 0; c < kNumPrimaries; ++c) {
     // A channel whose rectangle spans the same columns (rows) as an earlier one's shares them.
-    const Poly& p = *channelRect_[size_t(c)];
+    const Poly& p = *channelRect(c);
     colsOf[c] = rowsOf[c] = nullptr;
     for (int e = 0; e < c; ++e) {
-      const Poly& q = *channelRect_[size_t(e)];
+      const Poly& q = *channelRect(e);
       if (!colsOf[c] && p.u0 == q.u0 && p.u1 == q.u1 && p.pixU == q.pixU) colsOf[c] = colsOf[e];
       if (!rowsOf[c] && p.v0 == q.v0 && p.v1 == q.v1 && p.pixV == q.pixV) rowsOf[c] = rowsOf[e];
     }

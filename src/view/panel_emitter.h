@@ -173,6 +173,10 @@ class PanelEmitter {
   // Sum over the overlaps of (column length x row length x channel c's drive).
   double overlapSum(int c, const SideOverlaps& cols, const SideOverlaps& rows) const;
   double boxSumByPolygons(int c, const BoxTiles& b) const;
+  // Channel c's one rectangle per tile, or null (an index, so that copies stay valid).
+  const Poly* channelRect(int c) const {
+    return channelRect_[size_t(c)] < 0 ? nullptr : &polys_[size_t(channelRect_[size_t(c)])];
+  }
   float angular(float cosTheta) const;
 
   Panel panel_;
@@ -183,7 +187,7 @@ class PanelEmitter {
   const float* drive_ = nullptr;                          // its values
   std::vector<Poly> polys_;
   std::array<std::vector<int>, kNumPrimaries> channelPolys_;  // indices into polys_ per channel
-  std::array<const Poly*, kNumPrimaries> channelRect_{};       // the channel's one rectangle, if so
+  std::array<int, kNumPrimaries> channelRect_{-1, -1, -1};     // index of the channel's one rectangle, if so
   std::array<SpectrumPtr, kNumPrimaries> primary_;
   std::array<double, kNumPrimaries> areaFactor_{};
   double l0_ = 1.0;

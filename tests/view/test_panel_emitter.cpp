@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 
 #include "camera/lens_system.h"
 #include "core/error.h"
@@ -424,6 +425,22 @@ TEST(PanelEmitter, SharedDriveTableReadsAsTheEia) {
   EmitterSettings wrongSize;
   wrongSize.drive = std::make_shared<const std::vector<float>>(7, 1.0f);
   EXPECT_EQ(*PanelEmitter(d.panel, L, eia, "pattern.exr", 1.2, wrongSize).driveTable(), *first.driveTable());
+}
+
+// A copy outlives its original and reads as it did (the stripe path's rectangle is found by
+// index in the copy's own subpixels).
+TEST(PanelEmitter, ACopyReadsAsTheOriginalAfterItIsGone) {
+  Display d = smallDisplay(4, 3, 6, 0.05, 0.3, 1.0, 1.2);
+  const EiLayout L = computeLayout(d);
+  const PanelEmitter kept(d.panel, L, patternEia(L), "pattern.exr", 1.2);
+  auto original = std::make_unique<PanelEmitter>(d.panel, L, patternEia(L), "pattern.exr", 1.2);
+  const PanelEmitter copy = *original;
+  original.reset();
+  Rng rng(17, 2);
+  for (int i = 0; i < 300; ++i) {
+    const double u = L.panelW * rng.uniformDouble(), v = L.panelH * rng.uniformDouble(), h = 2.0 * rng.uniformDouble();
+    EXPECT_EQ(copy.channelBoxAveragesPx(u - h, v - h, u + h, v + h), kept.channelBoxAveragesPx(u - h, v - h, u + h, v + h));
+  }
 }
 
 TEST(PanelEmitter, ChannelLookupMatchesLookupPx) {
