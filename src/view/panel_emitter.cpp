@@ -446,6 +446,18 @@ float PanelEmitter::averageChannelSpectrum(int c, float lambdaNm) const {
   return float(l0_) * (*primary_[size_t(c)])(lambdaNm);
 }
 
+bool PanelEmitter::emitsLike(const PanelEmitter& o) const {
+  if (panelW_ != o.panelW_ || panelH_ != o.panelH_ || pitch_ != o.pitch_ || uOff_ != o.uOff_ || vOff_ != o.vOff_ ||
+      gap_ != o.gap_ || l0_ != o.l0_ || uniformIntensity_ != o.uniformIntensity_ ||
+      settings_.cosExponent != o.settings_.cosExponent || hasCoverGlass() != o.hasCoverGlass() || glassT_ != o.glassT_)
+    return false;
+  if (hasCoverGlass() && panel_.coverGlass->material != o.panel_.coverGlass->material) return false;
+  for (int c = 0; c < kNumPrimaries; ++c)
+    for (int l = int(kLambdaMin); l <= int(kLambdaMax); ++l)
+      if (averageChannelSpectrum(c, float(l)) != o.averageChannelSpectrum(c, float(l))) return false;
+  return true;
+}
+
 Vec3d PanelEmitter::whiteXyz() const { return spectrumToXYZ(SumSpectrum(primary_)) * l0_; }
 
 }  // namespace inim

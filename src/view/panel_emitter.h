@@ -139,6 +139,11 @@ class PanelEmitter {
   double panelMinY() const { return (vOff_ - panelH_) * pitch_; }
   double panelMaxY() const { return vOff_ * pitch_; }
   const Panel& panel() const { return panel_; }
+  // True when `o` emits as this one does wherever their subpixels coincide: the same panel
+  // placement, emitting plane, cover glass, angular profile and primaries (L0 primary_c on a
+  // 1 nm grid); they may differ in the subpixel layout and the drive values only. Such panels
+  // can be seen through one pass of the same optics (renderViews).
+  bool emitsLike(const PanelEmitter& o) const;
   // The drive values (panelW x panelH x RGB), for EmitterSettings::drive.
   std::shared_ptr<const std::vector<float>> driveTable() const { return driveTable_; }
 

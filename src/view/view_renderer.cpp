@@ -97,30 +97,39 @@ PixelMask displayMask(const CameraModel& camera, const AreaMm& area) {
   return m;
 }
 
-ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, const MlaModel& mla,
-                      const PanelEmitter& panel, const AreaMm& area, const ViewSettings& settings) {
+namespace {
+
+// One pass of the tile loop: the estimator's context panel into results[0], its companions into
+// the others.
+std::vector<ViewResult> renderPass(const CameraModel& camera, const EstimatorContext& context,
+                                   const std::vector<const EstimatorContext*>& companions,
+                                   const ViewSettings& settings) {
   validate(settings);
   const auto start = std::chrono::steady_clock::now();
-  const EstimatorContext context(camera, sensor, mla, panel, area, settings);
-  const std::unique_ptr<PixelEstimator> estimator = makePanelEstimator(settings.panelEstimator, context);
-
+  const std::unique_ptr<PixelEstimator> estimator =
+      companions.empty() ? makePanelEstimator(settings.panelEstimator, context)
+                         : std::make_unique<QuadratureEstimator>(context, companions);
   const int W = camera.width(), H = camera.height();
-  Image image(W, H, {"R", "G", "B"});
+  std::vector<Image> images(companions.size() + 1, Image(W, H, {"R", "G", "B"}));
   ViewStats stats;
   std::mutex statsMutex;
   const bool cull = settings.cullTiles && settings.backgroundY == 0.0;
   ProgressBar bar("view", uint64_t(W) * H, settings.progress && ProgressBar::stderrIsTerminal());
   parallelForTiles(W, H, [&](const Tile& tile) {
-    if (cull && tileMissesDisplay(camera, tile, area, context.frontZ)) {
+    if (cull && tileMissesDisplay(camera, tile, context.area, context.frontZ)) {
       std::lock_guard<std::mutex> lock(statsMutex);
       stats.culledPixels += uint64_t(tile.x1 - tile.x0) * uint64_t(tile.y1 - tile.y0);
-      return;  // the image is already 0 there
+      return;  // the images are already 0 there
     }
     const std::unique_ptr<TileEstimator> tileEstimator = estimator->beginTile();
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
         const Vec3d rgb = tileEstimator->pixel(x, y) / double(settings.spp);
-        for (int c = 0; c < 3; ++c) image.at(x, y, c) = float(rgb[c]);
+        for (int c = 0; c < 3; ++c) images[0].at(x, y, c) = float(rgb[c]);
+        for (size_t k = 0; k < companions.size(); ++k) {
+          const Vec3d other = tileEstimator->companionPixel(int(k)) / double(settings.spp);
+          for (int c = 0; c < 3; ++c) images[k + 1].at(x, y, c) = float(other[c]);
+        }
       }
     std::lock_guard<std::mutex> lock(statsMutex);
     tileEstimator->addStats(stats);
@@ -131,7 +140,42 @@ ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, con
   stats.raysPerSample = context.channels.raysPerSample();
   stats.dispersive = context.channels.dispersive();
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return {std::move(image), stats};
+  std::vector<ViewResult> results;
+  for (Image& image : images) results.push_back({std::move(image), stats});
+  return results;
+}
+
+}  // namespace
+
+ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, const MlaModel& mla,
+                      const PanelEmitter& panel, const AreaMm& area, const ViewSettings& settings) {
+  validate(settings);
+  const EstimatorContext context(camera, sensor, mla, panel, area, settings);
+  return std::move(renderPass(camera, context, {}, settings).front());
+}
+
+std::vector<ViewResult> renderViews(const CameraModel& camera, const CameraSensor& sensor, const MlaModel& mla,
+                                    const std::vector<const PanelEmitter*>& panels, const AreaMm& area,
+                                    const ViewSettings& settings) {
+  std::vector<ViewResult> results(panels.size());
+  if (panels.empty()) return results;
+  validate(settings);
+  std::vector<std::unique_ptr<EstimatorContext>> contexts;
+  for (const PanelEmitter* p : panels)
+    contexts.push_back(std::make_unique<EstimatorContext>(camera, sensor, mla, *p, area, settings));
+  std::vector<const EstimatorContext*> carried;
+  std::vector<size_t> carriedIndex;
+  for (size_t k = 1; k < panels.size(); ++k)
+    if (settings.panelEstimator == PanelEstimator::Quadrature &&
+        QuadratureEstimator::canCarry(*contexts[0], *contexts[k]))
+      carried.push_back(contexts[k].get()), carriedIndex.push_back(k);
+  std::vector<ViewResult> pass = renderPass(camera, *contexts[0], carried, settings);
+  results[0] = std::move(pass[0]);
+  for (size_t i = 0; i < carried.size(); ++i) results[carriedIndex[i]] = std::move(pass[i + 1]);
+  for (size_t k = 1; k < panels.size(); ++k)
+    if (std::find(carriedIndex.begin(), carriedIndex.end(), k) == carriedIndex.end())
+      results[k] = renderPass(camera, *contexts[k], {}, settings).front();
+  return results;
 }
 
 }  // namespace inim

@@ -18,6 +18,7 @@
 // estimator's caches are per tile, filled in the tile's fixed order, so the image is
 // bit-identical for any thread count.
 #include <cstdint>
+#include <vector>
 
 #include "camera/camera_model.h"
 #include "camera/sensor.h"
@@ -71,5 +72,13 @@ struct ViewResult {
 // settings the estimator cannot use.
 ViewResult renderView(const CameraModel& camera, const CameraSensor& sensor, const MlaModel& mla,
                       const PanelEmitter& panel, const AreaMm& area, const ViewSettings& settings);
+
+// The views of several panels through the same camera, MLA and area: result k is panel k's,
+// bit for bit what renderView gives it. Panels that the Quadrature estimator can carry along
+// with the first (QuadratureEstimator::canCarry: another subpixel layout or drive) share one
+// pass, its geometry traced once (their stats are the pass's); the others render one by one.
+std::vector<ViewResult> renderViews(const CameraModel& camera, const CameraSensor& sensor, const MlaModel& mla,
+                                    const std::vector<const PanelEmitter*>& panels, const AreaMm& area,
+                                    const ViewSettings& settings);
 
 }  // namespace inim

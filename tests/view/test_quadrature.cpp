@@ -146,3 +146,49 @@ TEST(ViewQuadrature, SharedTablesGiveTheSameImagesForOtherDisplays) {
                           patterned.layout.activeArea(), shared),
                std::logic_error);
 }
+
+TEST(ViewQuadrature, CompanionPanelsAreEachTheirOwnRender) {
+  // One pass through the real MLA and cover glass for panels that differ from the first in the
+  // subpixel layout (each pixel a uniform emitter) or the drive (white) only: carried along
+  // (canCarry); one without the cover glass is not, and renders alone. Each image is bit for
+  // bit renderView's of its own panel, through a thin lens and through the real, dispersive one.
+  const RealSetup r, white(true);
+  Panel uniform = r.display.panel;
+  uniform.subpixels.type = "custom";
+  uniform.subpixels.tileW = uniform.subpixels.tileH = 1;
+  uniform.subpixels.subpixels.clear();
+  for (int c = 0; c < kNumPrimaries; ++c)
+    uniform.subpixels.subpixels.push_back({c, {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}}});
+  const PanelEmitter uniformPanel(uniform, r.layout, patternEia(r.layout), "eia.exr", RealSetup::g);
+  EmitterSettings noGlass;
+  noGlass.coverGlass = false;
+  const PanelEmitter bare(r.display.panel, r.layout, patternEia(r.layout), "eia.exr", RealSetup::g, noGlass);
+  const std::vector<const PanelEmitter*> panels{r.panel.get(), &uniformPanel, white.panel.get(), &bare};
+  ViewSettings s;
+  s.spp = 2;
+  s.progress = false;
+  s.apertureGrid = 12;
+  const CameraSensor& sensor = defaultCamera().sensor;
+  const AreaMm area = r.layout.activeArea();
+  const auto lens = realLensCameraAt200mm();
+  const std::vector<const CameraModel*> cameras{r.camera.get(), lens.get()};
+  for (const CameraModel* camera : cameras) {
+    const EstimatorContext first(*camera, sensor, *r.mla, *r.panel, area, s);
+    for (size_t k = 1; k < panels.size(); ++k)
+      EXPECT_EQ(QuadratureEstimator::canCarry(first, EstimatorContext(*camera, sensor, *r.mla, *panels[k], area, s)),
+                k < 3)
+          << "panel " << k;
+    const std::vector<ViewResult> together = renderViews(*camera, sensor, *r.mla, panels, area, s);
+    ASSERT_EQ(together.size(), panels.size());
+    for (size_t k = 0; k < panels.size(); ++k) {
+      const ViewResult own = renderView(*camera, sensor, *r.mla, *panels[k], area, s);
+      ASSERT_EQ(own.image.data.size(), together[k].image.data.size());
+      EXPECT_GT(meanAll(own.image), 0.0) << "panel " << k;
+      EXPECT_EQ(std::memcmp(own.image.data.data(), together[k].image.data.data(), own.image.data.size() * sizeof(float)),
+                0)
+          << "panel " << k << (camera == lens.get() ? ", real lens" : ", thin lens");
+    }
+    // The layouts differ, so the views do.
+    EXPECT_GT(rmse(together[0].image, together[1].image), 0.0);
+  }
+}

@@ -54,6 +54,8 @@ class TileEstimator {
   virtual ~TileEstimator() = default;
   // Linear camera RGB of pixel (x, y) summed over its spp samples (the renderer divides).
   virtual Vec3d pixel(int x, int y) = 0;
+  // The same sum for companion panel k (PixelEstimator::companions) at the pixel last asked for.
+  virtual Vec3d companionPixel(int /*k*/) const { return Vec3d(0.0); }
   // Adds the tile's statistics (ray counts and the estimator's own) to `stats`.
   virtual void addStats(ViewStats& stats) const = 0;
 };
@@ -63,6 +65,8 @@ class PixelEstimator {
   virtual ~PixelEstimator() = default;
   virtual PanelEstimator kind() const = 0;
   virtual std::unique_ptr<TileEstimator> beginTile() const = 0;
+  // How many companion panels each tile also renders (renderViews; Quadrature only).
+  virtual int companions() const { return 0; }
   // Adds the statistics of the work done once per image (tables) to `stats`.
   virtual void addStats(ViewStats& /*stats*/) const {}
 };

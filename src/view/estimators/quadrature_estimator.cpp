@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "core/convex_polygon.h"
@@ -89,8 +90,15 @@ class QuadratureTile final : public TileEstimator {
         context_(estimator.context_),
         fallback_(context_, counts_),
         mla_(context_, stats_.probeRays),
-        lensletMaps_(mla_, context_.referenceLambdaNm) {}
+        lensletMaps_(mla_, context_.referenceLambdaNm),
+        companionRgb_(estimator.companions_.size()),
+        companionCounts_(estimator.companions_.size()) {
+    companionFallbacks_.reserve(estimator.companions_.size());
+    for (size_t k = 0; k < estimator.companions_.size(); ++k)
+      companionFallbacks_.emplace_back(*estimator.companions_[k], companionCounts_[k]);
+  }
   Vec3d pixel(int x, int y) override;
+  Vec3d companionPixel(int k) const override { return companionRgb_[size_t(k)]; }
   void addStats(ViewStats& stats) const override {
     stats.addRayCounts(counts_);
     stats.quadrature.pieces += stats_.pieces;
@@ -120,7 +128,15 @@ class QuadratureTile final : public TileEstimator {
                            const ApertureTable& table);
   bool addEmission(const PolygonMoments& piece, const ApertureTable& table, const Landing& landing,
                    const float* offsets, const double M[2][2], const Vec2d& shift, double scale, int primary, int node,
-                   Vec3d& rgb) const;
+                   Vec3d& rgb);
+  // Where a piece's table points read the panel: their offsets about (cu, cv) and the box's half sizes.
+  struct PanelBoxes {
+    const float* offsets;
+    double cu, cv, halfU, halfV;
+  };
+  bool addPanelEmission(const EstimatorContext& panelContext, const WavelengthNodes& nodes, const ApertureTable& table,
+                        const Landing& landing, const PanelBoxes& boxes, double scale, int primary, int node,
+                        Vec3d& rgb) const;
 
   const QuadratureEstimator& estimator_;
   const EstimatorContext& context_;
@@ -130,6 +146,10 @@ class QuadratureTile final : public TileEstimator {
   MlaLanding mla_;
   LensletMapCache lensletMaps_;
   std::vector<float> pieceOffsets_;  // the table's panel offsets for the current piece
+  // The companion panels' sums for the current pixel, and their point-sample fallbacks.
+  std::vector<Vec3d> companionRgb_;
+  std::vector<RayCounts> companionCounts_;  // (the pass's counts are the context panel's)
+  std::vector<SampleTracer> companionFallbacks_;
 };
 
 Vec3d QuadratureTile::pixel(int x, int y) {
@@ -140,11 +160,15 @@ Vec3d QuadratureTile::pixel(int x, int y) {
   const BlockCamera& camera = estimator_.tables_->camera(block);
   const bool ready = table.valid() && camera.ok;
   Vec3d rgb(0.0);
+  std::fill(companionRgb_.begin(), companionRgb_.end(), Vec3d(0.0));
   fallback_.beginPixel(x, y);
+  for (SampleTracer& f : companionFallbacks_) f.beginPixel(x, y);
   for (int i = 0; i < context_.settings.spp; ++i) {
     if (!ready) {
       ++stats_.fallbacks;
       fallback_.addSample(i, PanelRead{}, rgb);
+      for (size_t k = 0; k < companionFallbacks_.size(); ++k)
+        companionFallbacks_[k].addSample(i, PanelRead{}, companionRgb_[k]);
       continue;
     }
     integrateStratum(x, y, i, table, camera, block, rgb);
@@ -183,9 +207,12 @@ void QuadratureTile::integrateStratum(int x, int y, int index, const ApertureTab
       Vec2d crossing, slope;
       double weight;
       camera.at(stratum.centroid(), -1, crossing, slope, weight);
-      if (weight > 0.0)
-        rgb += (stratumArea - areaOn) / stratumArea * (table.total * weight / table.centreWeight) * background /
-               double(geometries);
+      if (weight > 0.0) {
+        const double seen = (stratumArea - areaOn) / stratumArea * (table.total * weight / table.centreWeight) *
+                            background / double(geometries);
+        rgb += seen;
+        for (Vec3d& c : companionRgb_) c += seen;
+      }
     }
     if (!(areaOn > 1e-12 * stratumArea)) continue;
     const int pieces = integrateAcrossLenslets(onDisplay, areaOn, stratumArea, table, geometry, block,
@@ -408,12 +435,13 @@ void QuadratureTile::integratePieceAt(const PolygonMoments& piece, double fracti
 }
 
 // Adds scale x (the table's weights x each point's box average of its channel) to rgb, per
-// channel (`primary` only when dispersive, else all three); the box has the variance of the
-// piece's image on the panel (its covariance through M). Without offsets, the whole table's
-// weight reads the drive at the landing point. True when anything was emitted.
+// channel (`primary` only when dispersive, else all three), and the same of each companion
+// panel to its sum; the box has the variance of the piece's image on the panel (its covariance
+// through M). Without offsets, the whole table's weight reads the drive at the landing point.
+// True when the context's panel emitted anything.
 bool QuadratureTile::addEmission(const PolygonMoments& piece, const ApertureTable& table, const Landing& landing,
                                  const float* offsets, const double M[2][2], const Vec2d& shift, double scale,
-                                 int primary, int node, Vec3d& rgb) const {
+                                 int primary, int node, Vec3d& rgb) {
   double halfU = 0.0, halfV = 0.0;
   if (offsets) {
     const double varU =
@@ -423,9 +451,21 @@ bool QuadratureTile::addEmission(const PolygonMoments& piece, const ApertureTabl
     halfU = std::min(std::sqrt(3.0 * std::max(0.0, varU)), kMaxBoxHalfWidthPx);
     halfV = std::min(std::sqrt(3.0 * std::max(0.0, varV)), kMaxBoxHalfWidthPx);
   }
-  const PanelEmitter& panel = context_.panel;
+  const PanelBoxes boxes{offsets, landing.uv.x + shift.x, landing.uv.y + shift.y, halfU, halfV};
+  for (size_t k = 0; k < companionRgb_.size(); ++k)
+    addPanelEmission(*estimator_.companions_[k], estimator_.companionNodes_[k], table, landing, boxes, scale, primary,
+                     node, companionRgb_[k]);
+  return addPanelEmission(context_, estimator_.nodes_, table, landing, boxes, scale, primary, node, rgb);
+}
+
+// One panel's part of addEmission (its subpixels, drive, channel RGB and wavelength nodes).
+bool QuadratureTile::addPanelEmission(const EstimatorContext& panelContext, const WavelengthNodes& nodes,
+                                      const ApertureTable& table, const Landing& landing, const PanelBoxes& boxes,
+                                      double scale, int primary, int node, Vec3d& rgb) const {
+  const PanelEmitter& panel = panelContext.panel;
   const size_t n = table.points.size();
-  const double cu = landing.uv.x + shift.x, cv = landing.uv.y + shift.y;
+  const double cu = boxes.cu, cv = boxes.cv, halfU = boxes.halfU, halfV = boxes.halfV;
+  const float* offsets = boxes.offsets;
   double e[kNumPrimaries] = {0.0, 0.0, 0.0};
   if (!offsets) {
     for (int c = 0; c < kNumPrimaries; ++c)
@@ -448,12 +488,14 @@ bool QuadratureTile::addEmission(const PolygonMoments& piece, const ApertureTabl
   for (int c = 0; c < kNumPrimaries; ++c) {
     if (e[c] == 0.0) continue;
     emitted = true;
-    rgb += (scale * e[c]) * (primary >= 0 ? estimator_.nodes_.rgb[c][size_t(node)] : context_.channels.channelRgb(c));
+    rgb += (scale * e[c]) * (primary >= 0 ? nodes.rgb[c][size_t(node)] : panelContext.channels.channelRgb(c));
   }
   return emitted;
 }
 
-QuadratureEstimator::QuadratureEstimator(const EstimatorContext& context) : context_(context) {
+QuadratureEstimator::QuadratureEstimator(const EstimatorContext& context,
+                                         std::vector<const EstimatorContext*> companions)
+    : context_(context), companions_(std::move(companions)) {
   const ViewSettings& s = context.settings;
   if (!context.channels.primaries())
     throw InputError("", "spectral", spectralSamplingName(s.spectral),
@@ -467,6 +509,11 @@ QuadratureEstimator::QuadratureEstimator(const EstimatorContext& context) : cont
     if (s.spp % d == 0) strataX_ = d;
   strataY_ = s.spp / strataX_;
   if (context.channels.dispersive()) nodes_ = wavelengthNodes(context.channels, nodesPerPrimary_);
+  for (const EstimatorContext* c : companions_) {
+    if (!canCarry(context, *c)) throw std::logic_error("QuadratureEstimator: a companion panel it cannot carry");
+    companionNodes_.push_back(c->channels.dispersive() ? wavelengthNodes(c->channels, nodesPerPrimary_)
+                                                       : WavelengthNodes{});
+  }
   // A dispersive camera: the block cameras' lateral colour at every node (primary-major).
   QuadratureTableKey key;
   if (context.cameraDispersive)
@@ -490,6 +537,18 @@ QuadratureEstimator::QuadratureEstimator(const EstimatorContext& context) : cont
   key.frontZ = context.frontZ;
   tables_ = s.tableCache ? s.tableCache->tables(camera, key) : std::make_shared<const QuadratureTables>(camera, key);
   raysBefore_ = tables_->rays();
+}
+
+bool QuadratureEstimator::canCarry(const EstimatorContext& context, const EstimatorContext& companion) {
+  if (!context.panel.emitsLike(companion.panel) || context.channels.dispersive() != companion.channels.dispersive())
+    return false;
+  if (!context.channels.dispersive()) return true;
+  const int count = context.settings.wavelengthNodes;
+  if (count < 1 || count > 64) return false;
+  const WavelengthNodes a = wavelengthNodes(context.channels, count), b = wavelengthNodes(companion.channels, count);
+  for (int c = 0; c < kNumPrimaries; ++c)
+    if (a.lambda[c] != b.lambda[c]) return false;
+  return true;
 }
 
 std::unique_ptr<TileEstimator> QuadratureEstimator::beginTile() const {

@@ -25,6 +25,10 @@
 // (slope Jacobian), no camera-lens rays, and one box average per table point (~0.8 G^2); per
 // block of pixels one table (~G^2 camera rays). Falls back to PointSample for the pixels of a
 // block whose table or camera cannot be built. Needs SpectralSampling::Primaries.
+// Companions: panels that emit like the context's (PanelEmitter::emitsLike; another subpixel
+// layout or drive) and share its wavelength nodes are integrated in the same pass, each piece's
+// geometry (landing, maps, table offsets) traced once and read on every panel; each companion's
+// image is bit for bit its own render's (renderViews).
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -56,10 +60,17 @@ class QuadratureEstimator final : public PixelEstimator {
  public:
   // Sizes the aperture tables and block cameras (each built on first use). InputError for visible spectral sampling
   // (key spectral), wavelength_nodes outside 1..64 or aperture_grid outside 2..64.
-  explicit QuadratureEstimator(const EstimatorContext& context);
+  // `companions` (contexts of the same camera, MLA, area and settings; they must outlive it): each
+  // must be canCarry(context, companion).
+  explicit QuadratureEstimator(const EstimatorContext& context,
+                               std::vector<const EstimatorContext*> companions = {});
   PanelEstimator kind() const override { return PanelEstimator::Quadrature; }
   std::unique_ptr<TileEstimator> beginTile() const override;
+  int companions() const override { return int(companions_.size()); }
   void addStats(ViewStats& stats) const override;
+  // True when `companion`'s panel can be rendered in `context`'s pass: it emits like it, both
+  // are dispersive or neither, and their wavelength nodes are the same.
+  static bool canCarry(const EstimatorContext& context, const EstimatorContext& companion);
 
  private:
   friend class QuadratureTile;
@@ -67,6 +78,8 @@ class QuadratureEstimator final : public PixelEstimator {
   int strataX_ = 1, strataY_ = 1;
   int nodesPerPrimary_ = 1;
   WavelengthNodes nodes_;          // dispersive only
+  std::vector<const EstimatorContext*> companions_;
+  std::vector<WavelengthNodes> companionNodes_;  // dispersive only
   int blockSize_ = 1, blocksX_ = 1;  // pixels per table block, blocks per row
   // Built when a pixel of the block is first rendered (the tiles that cannot see the display
   // need none); shared with other renders through ViewSettings::tableCache.
