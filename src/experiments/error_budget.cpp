@@ -54,59 +54,111 @@ std::string skipReason(const BudgetScene& s, const BudgetRung& r) {
   return "";
 }
 
-// The display model of a rung's optics and panel; `drive`: the drive table of another rung's
-// emitter of the same EIA (PanelEmitter::driveTable), or null.
-DisplayModel rungDisplay(const BudgetScene& s, const BudgetRung& r,
-                         std::shared_ptr<const std::vector<float>> drive = nullptr) {
+// A rung's display: the scene's, its panel's subpixels uniform pixels without the subpixel rung.
+Display rungDescription(const BudgetScene& s, const BudgetRung& r) {
   Display d = *s.display;
   if (!r.subpixels) d.panel.subpixels = uniformPixelLayout();
+  return d;
+}
+
+// A rung's emitter settings; `drive`: the drive table of another emitter of the same EIA
+// (PanelEmitter::driveTable), or null.
+EmitterSettings rungEmitter(const BudgetRung& r, std::shared_ptr<const std::vector<float>> drive) {
   EmitterSettings emitter;
   emitter.coverGlass = r.coverGlass;
   emitter.drive = std::move(drive);
-  const Image& eia = r.calibrated ? *s.calibratedEia : *s.eia;
-  return makeDisplayModel(d, *s.layout, eia, "(EIA)", r.realMla ? MlaKind::Real : MlaKind::Ideal, s.gapMm, emitter);
+  return emitter;
 }
+
+const Image& rungEia(const BudgetScene& s, const BudgetRung& r) { return r.calibrated ? *s.calibratedEia : *s.eia; }
+
+// The display model of a rung's optics and panel (`drive`: as rungEmitter's).
+DisplayModel rungDisplay(const BudgetScene& s, const BudgetRung& r,
+                         std::shared_ptr<const std::vector<float>> drive = nullptr) {
+  return makeDisplayModel(rungDescription(s, r), *s.layout, rungEia(s, r), "(EIA)",
+                          r.realMla ? MlaKind::Real : MlaKind::Ideal, s.gapMm, rungEmitter(r, std::move(drive)));
+}
+
+// A rung's optics (what its panels are seen through).
+std::string opticsKey(const BudgetRung& r) { return std::string(r.realMla ? "r" : "i") + (r.coverGlass ? "g" : "n"); }
 
 // A rung's optics and panel (what a render depends on besides the sensor).
 std::string geometryKey(const BudgetRung& r) {
-  return std::string(r.subpixels ? "s" : "u") + (r.realMla ? "r" : "i") + (r.coverGlass ? "g" : "n") + (r.calibrated ? "c" : "e");
+  return std::string(r.subpixels ? "s" : "u") + opticsKey(r) + (r.calibrated ? "c" : "e");
 }
 
 bool isFullChain(const BudgetRung& r) { return r.subpixels && r.realMla && r.coverGlass && r.colourChain && !r.calibrated; }
 
 // The renders of one pose, each once: through the camera's sensor, and, for the rungs without
-// the colour chain, through the observer (by sensorSwap when exact, else rendered).
+// the colour chain, through the observer (by sensorSwap when exact, else rendered). Rungs that
+// share their optics and sensor are rendered in one pass (renderViews).
 class RungRenders {
  public:
-  RungRenders(const BudgetScene& s, const CameraModel& camera, const Image* fullChainView,
+  RungRenders(const BudgetScene& s, const CameraModel& camera, const std::vector<MadeRungView>& made,
               std::shared_ptr<QuadratureTableCache> tables)
       : s_(s), camera_(camera), observer_(cieObserverSensor(s.camera->sensor.geometry())),
         tables_(tables ? std::move(tables) : std::make_shared<QuadratureTableCache>(camera)) {
-    if (fullChainView) cameraViews_[geometryKey(rung("full", "", true, true, true, true))] = *fullChainView;
+    for (const MadeRungView& m : made)
+      if (m.view) cameraViews_[geometryKey(m.rung)] = Render{*m.view, 0.0, m.note};
   }
 
-  // The rung's linear view in camera RGB, and a note when it reused another rung's render.
-  Image view(const BudgetRung& r, std::string& note) {
-    const std::string key = geometryKey(r);
-    if (r.colourChain) return cameraView(r, key);
-    if (!sensorSwapIsExact(s_.view)) {
-      const DisplayModel dm = display(r);
-      return observerAsCamera(render(dm, observer_), s_.camera->sensor);
+  // Renders what `rungs` need and is not made yet, one pass per optics and sensor; each pass's
+  // time goes to its first rung.
+  void prepare(const std::vector<BudgetRung>& rungs) {
+    std::map<std::string, std::vector<BudgetRung>> passes;
+    for (const BudgetRung& r : rungs) {
+      const bool camera = throughCamera(r);
+      const std::string key = geometryKey(r);
+      if ((camera ? cameraViews_ : observerViews_).count(key)) continue;
+      std::vector<BudgetRung>& pass = passes[std::string(camera ? "camera " : "observer ") + opticsKey(r)];
+      if (std::none_of(pass.begin(), pass.end(), [&](const BudgetRung& o) { return geometryKey(o) == key; }))
+        pass.push_back(r);
     }
-    note = "the render of the same optics through the camera, seen by the observer (exact 3 x 3)";
-    const Image& cam = cameraView(r, key);
+    for (const auto& [optics, pass] : passes) render(pass, optics[0] == 'c');
+  }
+
+  // The rung's linear view in camera RGB (prepared), with a note on how it was made and the
+  // seconds of its render that no rung has taken yet.
+  Image view(const BudgetRung& r, std::string& note, double& seconds) {
+    Render& made = (throughCamera(r) ? cameraViews_ : observerViews_).at(geometryKey(r));
+    seconds = made.seconds;
+    made.seconds = 0.0;
+    note = made.note;
+    if (!throughCamera(r)) return observerAsCamera(made.image, s_.camera->sensor);
+    if (r.colourChain) return made.image;
+    note = (note.empty() ? "" : note + "; ") + "the render of the same optics through the camera, seen by the observer (exact 3 x 3)";
     // The matrix depends on the panel's primaries only (any rung's emitter gives it).
     if (!toObserver_) toObserver_ = sensorSwap(*display(r).panel, s_.camera->sensor, observer_);
-    return observerAsCamera(transformedRgb(cam, *toObserver_), s_.camera->sensor);
+    return observerAsCamera(transformedRgb(made.image, *toObserver_), s_.camera->sensor);
   }
 
  private:
-  const Image& cameraView(const BudgetRung& r, const std::string& key) {
-    auto it = cameraViews_.find(key);
-    if (it != cameraViews_.end()) return it->second;
-    const DisplayModel dm = display(r);
-    if (!toObserver_) toObserver_ = sensorSwap(*dm.panel, s_.camera->sensor, observer_);
-    return cameraViews_[key] = render(dm, s_.camera->sensor);
+  struct Render {
+    Image image;
+    double seconds = 0.0;
+    std::string note;
+  };
+
+  bool throughCamera(const BudgetRung& r) const { return r.colourChain || sensorSwapIsExact(s_.view); }
+
+  void render(const std::vector<BudgetRung>& pass, bool camera) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<DisplayModel> dms;
+    std::vector<const PanelEmitter*> panels;
+    for (const BudgetRung& r : pass) {
+      dms.push_back(display(r));
+      panels.push_back(dms.back().panel.get());
+    }
+    ViewSettings vs = s_.view;
+    vs.progress = false;
+    vs.tableCache = tables_;  // the rungs differ in the display only
+    std::vector<ViewResult> views = renderViews(camera_, camera ? s_.camera->sensor : observer_, *dms[0].mla,
+                                                panels, dms[0].area, vs);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (size_t k = 0; k < pass.size(); ++k)
+      (camera ? cameraViews_ : observerViews_)[geometryKey(pass[k])] =
+          Render{std::move(views[k].image), k == 0 ? seconds : 0.0,
+                 views[k].carried ? "rendered in one pass with " + pass[0].name : ""};
   }
 
   // The rungs of one EIA read it into a drive table once.
@@ -117,17 +169,10 @@ class RungRenders {
     return dm;
   }
 
-  Image render(const DisplayModel& dm, const CameraSensor& sensor) const {
-    ViewSettings vs = s_.view;
-    vs.progress = false;
-    vs.tableCache = tables_;  // the rungs differ in the display only
-    return renderView(camera_, sensor, *dm.mla, *dm.panel, dm.area, vs).image;
-  }
-
   const BudgetScene& s_;
   const CameraModel& camera_;
   const CameraSensor observer_;
-  std::map<std::string, Image> cameraViews_;
+  std::map<std::string, Render> cameraViews_, observerViews_;  // by geometryKey
   std::map<bool, std::shared_ptr<const std::vector<float>>> drives_;  // per EIA: calibrated or not
   std::optional<glm::dmat3> toObserver_;
   std::shared_ptr<QuadratureTableCache> tables_;
@@ -172,6 +217,22 @@ std::vector<BudgetRung> budgetRungs() {
           rung("-colour_chain", "full - colour chain", true, true, true, false)};
 }
 
+BudgetRung fullChainRung() { return rung("full", "full chain", true, true, true, true); }
+
+std::vector<RungPanel> fullChainCompanions(const BudgetScene& s, const std::vector<BudgetRung>& rungs, double gapMm,
+                                           std::shared_ptr<const std::vector<float>> drive) {
+  std::vector<RungPanel> out;
+  const std::string full = geometryKey(fullChainRung());
+  for (const BudgetRung& r : rungs) {
+    if (!r.realMla || !r.coverGlass || !r.colourChain || geometryKey(r) == full || !skipReason(s, r).empty()) continue;
+    if (std::any_of(out.begin(), out.end(), [&](const RungPanel& o) { return geometryKey(o.rung) == geometryKey(r); }))
+      continue;
+    out.push_back({r, std::make_unique<PanelEmitter>(rungDescription(s, r).panel, *s.layout, rungEia(s, r), "(EIA)",
+                                                     gapMm, rungEmitter(r, r.calibrated ? nullptr : drive))});
+  }
+  return out;
+}
+
 std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names) {
   const std::vector<BudgetRung> all = budgetRungs();
   std::vector<BudgetRung> out;
@@ -188,7 +249,7 @@ std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names) {
 
 PoseBudget poseBudget(const BudgetScene& s, const CameraModel& camera, const Image& reference,
                       const Image& secondReference, double exposure, const PixelMask& mask,
-                      const std::vector<BudgetRung>& rungs, const Image* fullChainView,
+                      const std::vector<BudgetRung>& rungs, const std::vector<MadeRungView>& made,
                       const Image* bandLimitedReference, std::shared_ptr<QuadratureTableCache> tables) {
   const CameraSensor& sensor = s.camera->sensor;
   const Image refSrgb = cameraRgbToSrgb(reference, sensor);
@@ -199,7 +260,11 @@ PoseBudget poseBudget(const BudgetScene& s, const CameraModel& camera, const Ima
                                "reference (another seed)");
   std::optional<Image> limitedSrgb;
   if (bandLimitedReference) limitedSrgb = cameraRgbToSrgb(*bandLimitedReference, sensor);
-  RungRenders renders(s, camera, fullChainView, std::move(tables));
+  RungRenders renders(s, camera, made, std::move(tables));
+  std::vector<BudgetRung> rendered;
+  for (const BudgetRung& r : rungs)
+    if (skipReason(s, r).empty()) rendered.push_back(r);
+  renders.prepare(rendered);
   std::map<std::string, RungResult> sameConfiguration;  // "+cover_glass" is "-colour_chain"
   auto run = [&](const BudgetRung& r) {
     RungResult out;
@@ -214,12 +279,13 @@ PoseBudget poseBudget(const BudgetScene& s, const CameraModel& camera, const Ima
       out.seconds = 0.0;
       return out;
     }
-    const Image view = renders.view(r, out.note);
+    double renderSeconds = 0.0;
+    const Image view = renders.view(r, out.note, renderSeconds);
     out.srgb = cameraRgbToSrgb(scaledImage(view, exposure), sensor);
     out.metrics = compareImages(refSrgb, out.srgb, copt, &mask, "reference", r.name);
     if (limitedSrgb)
       out.bandLimited = compareImages(*limitedSrgb, out.srgb, copt, &mask, "band-limited reference", r.name);
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.seconds = renderSeconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     sameConfiguration[key] = out;
     return out;
   };

@@ -69,6 +69,28 @@ struct RungResult {
   Image srgb;                // the rung's view, sRGB (for error maps)
 };
 
+// A rung's render made before poseBudget (through the same camera, sensor and settings; linear
+// camera RGB, unexposed): the run's own view as the full chain, and the rungs it carried along.
+struct MadeRungView {
+  BudgetRung rung;
+  const Image* view = nullptr;
+  std::string note;  // how it was made, for the budget
+};
+
+// The full chain (subpixels, real MLA, cover glass, colour chain; not calibrated).
+BudgetRung fullChainRung();
+
+// A rung that a render of the full chain can carry along (renderViews), and its panel.
+struct RungPanel {
+  BudgetRung rung;
+  std::unique_ptr<PanelEmitter> panel;
+};
+// The rungs of `rungs` seen through the full chain's optics and colour chain with another panel
+// (no subpixels; the calibrated EIA) that can be built, each once, with their panels at the gap
+// `gapMm`; `drive`: the uncalibrated EIA's drive table (PanelEmitter::driveTable), shared.
+std::vector<RungPanel> fullChainCompanions(const BudgetScene& scene, const std::vector<BudgetRung>& rungs,
+                                           double gapMm, std::shared_ptr<const std::vector<float>> drive);
+
 struct PoseBudget {
   std::string pose;
   ImageMetrics noiseFloor;   // reference against the reference of another seed
@@ -78,14 +100,15 @@ struct PoseBudget {
 // The rungs at one pose. `reference`, `secondReference`: linear camera RGB already scaled to
 // the display's units and exposed by `exposure` (fig11's exposeAlike); rung views are
 // multiplied by `exposure`. `rungs`: which rungs to render (budgetRungs() or a selection).
-// `fullChainView` (optional): the run's own reconstruction of the uncalibrated EIA (linear,
-// unexposed), reused for the full-chain rung instead of rendering it again.
+// `made`: rungs rendered before (the run's own reconstruction of the uncalibrated EIA as the full
+// chain, and the companions it carried), reused instead of rendering them again; the rungs left
+// that share their optics and sensor are rendered in one pass each (renderViews).
 // `bandLimitedReference` (optional, exposed like `reference`; analysis/band_limit.h): every rung
 // is also compared with it. `tables` (optional): the aperture tables of renders through
 // `camera` made before (the run's own view's), which the rungs reuse.
 PoseBudget poseBudget(const BudgetScene& scene, const CameraModel& camera, const Image& reference,
                       const Image& secondReference, double exposure, const PixelMask& mask,
-                      const std::vector<BudgetRung>& rungs, const Image* fullChainView = nullptr,
+                      const std::vector<BudgetRung>& rungs, const std::vector<MadeRungView>& made = {},
                       const Image* bandLimitedReference = nullptr,
                       std::shared_ptr<QuadratureTableCache> tables = nullptr);
 

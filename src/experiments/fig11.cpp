@@ -103,6 +103,7 @@ struct PoseRenders {
   ReferenceDepth refDepth;
   PixelMask mask;
   std::shared_ptr<QuadratureTableCache> tables;  // the view's aperture tables, for the budget's rungs
+  std::vector<std::pair<BudgetRung, Image>> rungViews;  // the budget's rungs rendered in the view's pass
 };
 
 // A run: the inputs, the synthesized display and the outputs being collected.
@@ -112,7 +113,10 @@ class Fig11Run {
   Fig11Run(const Fig11Settings& s, Inputs& in, const DisplayModel& dm, double refToCdM2, const BudgetScene* budget,
            std::unique_ptr<CameraModel> firstCamera)
       : s_(s), in_(in), dm_(dm), refToCdM2_(refToCdM2), budget_(budget), dir_(s.outDir),
-        firstCamera_(std::move(firstCamera)) {}
+        firstCamera_(std::move(firstCamera)) {
+    if (budget_ && viewIsFullChain())
+      carriedRungs_ = fullChainCompanions(*budget_, budgetRungList(), dm_.gapMm, dm_.panel->driveTable());
+  }
 
   std::vector<PoseBudget> budgets;
 
@@ -138,7 +142,7 @@ class Fig11Run {
     vs.apertureGrid = s_.apertureGrid;
     vs.seed = s_.seed;
     if (budget_) vs.tableCache = r.tables = std::make_shared<QuadratureTableCache>(*r.camera);
-    r.rec = renderView(*r.camera, in_.camera.sensor, *dm_.mla, *dm_.panel, dm_.area, vs);
+    renderViewAndRungs(r, vs);
     v.displayInView = r.rec.stats.displayInView();
     v.reconstructionSeconds = r.rec.stats.seconds;
     // The reference in full where it is compared (the mask and the band limit's reach), one
@@ -176,7 +180,7 @@ class Fig11Run {
     compareWithBandLimited(v, img, limited, refDepth, mask, *camera);
     v.depthBins = depth.addPose(v.name, v.label, {img.refExposed, img.recExposed, img.refSrgb, img.recSrgb}, refDepth,
                                 mask, deltaE, metrics[v.name]);
-    if (budget_) budgets.push_back(poseBudgetOf(v, *camera, r.rec.image, img, mask, limited, r.tables));
+    if (budget_) budgets.push_back(poseBudgetOf(v, r, img, limited));
     return v;
   }
 
@@ -188,6 +192,22 @@ class Fig11Run {
     rs.sppKey = "reference_spp";
     rs.seed = seed;
     return rs;
+  }
+
+  // The view, and with it (one pass: renderViews) the budget's rungs that differ from it in the
+  // panel only, when the view is the budget's full chain.
+  void renderViewAndRungs(PoseRenders& r, const ViewSettings& vs) const {
+    std::vector<const PanelEmitter*> panels{dm_.panel.get()};
+    for (const RungPanel& p : carriedRungs_) panels.push_back(p.panel.get());
+    std::vector<ViewResult> views = renderViews(*r.camera, in_.camera.sensor, *dm_.mla, panels, dm_.area, vs);
+    r.rec = std::move(views[0]);
+    for (size_t k = 0; k < carriedRungs_.size(); ++k)
+      r.rungViews.emplace_back(carriedRungs_[k].rung, std::move(views[k + 1].image));
+  }
+
+  bool viewIsFullChain() const { return !in_.calibration && s_.mla == MlaKind::Real && s_.budgetSpp == s_.spp; }
+  std::vector<BudgetRung> budgetRungList() const {
+    return s_.budgetRungs.empty() ? budgetRungs() : selectRungs(s_.budgetRungs);
   }
 
   // The view against the band-limited reference: metrics, and error against depth.
@@ -223,20 +243,22 @@ class Fig11Run {
   }
 
   // The budget's rungs at this pose, against the same reference and a second one (another
-  // seed) for the noise floor; the run's own view is the full chain when it is one.
-  PoseBudget poseBudgetOf(const Fig11View& v, const CameraModel& camera, const Image& rec, const PoseImages& img,
-                          const PixelMask& mask, const Image& limited,
-                          std::shared_ptr<QuadratureTableCache> tables) {
+  // seed) for the noise floor; the run's own view is the full chain when it is one, and the
+  // rungs rendered in its pass are reused.
+  PoseBudget poseBudgetOf(const Fig11View& v, const PoseRenders& r, const PoseImages& img, const Image& limited) {
+    const CameraModel& camera = *r.camera;
+    const PixelMask& mask = r.mask;
     ReferenceSettings rs = referenceSettings(s_.seed + 1);
     rs.progress = false;
     rs.fullSamples = &mask.on;  // the floor is measured on the mask only
     rs.sppElsewhere = 0;
     const Image second = renderReference(*in_.field.field, in_.fieldToDisplay, camera, in_.camera.sensor, rs).image;
     const Image secondExposed = scaledImage(second, refToCdM2_ * img.exposure);
-    const bool fullChain = !in_.calibration && s_.mla == MlaKind::Real && s_.budgetSpp == s_.spp;
-    PoseBudget b = poseBudget(*budget_, camera, img.refExposed, secondExposed, img.exposure, mask,
-                              s_.budgetRungs.empty() ? budgetRungs() : selectRungs(s_.budgetRungs),
-                              fullChain ? &rec : nullptr, &limited, std::move(tables));
+    std::vector<MadeRungView> made;
+    if (viewIsFullChain()) made.push_back({fullChainRung(), &r.rec.image, ""});
+    for (const auto& [rung, view] : r.rungViews) made.push_back({rung, &view, "rendered in one pass with the view"});
+    PoseBudget b = poseBudget(*budget_, camera, img.refExposed, secondExposed, img.exposure, mask, budgetRungList(),
+                              made, &limited, r.tables);
     b.pose = v.name;
     return b;
   }
@@ -246,6 +268,7 @@ class Fig11Run {
   const DisplayModel& dm_;
   double refToCdM2_;
   const BudgetScene* budget_;
+  std::vector<RungPanel> carriedRungs_;  // the budget's rungs the view's pass renders (their panels)
   fs::path dir_;
   // The first pose's camera: the others are it moved (makeViewCamera), its lens focused once.
   std::unique_ptr<CameraModel> firstCamera_;

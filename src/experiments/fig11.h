@@ -62,8 +62,9 @@ struct Fig11Settings {
   std::string budgetCalibrationPath;     // the "+ calibration" rung's (default: calibrationPath)
   std::vector<std::string> budgetRungs;  // names of the rungs to run; empty: all
   // Strata per pixel of every rung, the full chain included (it is rendered again unless this
-  // equals spp): 1 keeps the budgeted run within 3 x the plain one, with the quadrature's own
-  // error (RMSE 2.5 % of the mean) the same for every rung.
+  // equals spp; when it does, the view's pass also renders the rungs that differ from it in the
+  // panel only: - subpixels, + calibration): 1 keeps the budgeted run within 3 x the plain one,
+  // with the quadrature's own error (RMSE 2.5 % of the mean) the same for every rung.
   int budgetSpp = 1;
   bool depthError = true;  // error against scene depth per pose (experiments/fig11_depth.h)
   // For studies: a display used instead of displayPath, and the poses to render by name
@@ -83,6 +84,7 @@ struct Fig11View {
   // Error against depth (empty without depth channels): against the reference and against the
   // band-limited reference.
   std::vector<DepthBin> depthBins, depthBinsBandLimited;
+  // The view's render (with the budget, its pass also renders the rungs it carries), the reference's.
   double reconstructionSeconds = 0, referenceSeconds = 0;
 };
 

@@ -171,8 +171,10 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
                       r.view.gapMm};
     scene.view.spp = rs.budgetSpp;
     scene.view.progress = false;
-    PoseBudget b = poseBudget(scene, *cs.camera, img.refExposed, secondExposed, img.exposure, mask, in.rungs,
-                              viewIsFullChain(s, rs) ? &r.view.render.image : nullptr, &limited);
+    std::vector<MadeRungView> made;
+    if (viewIsFullChain(s, rs)) made.push_back({fullChainRung(), &r.view.render.image, ""});
+    PoseBudget b = poseBudget(scene, *cs.camera, img.refExposed, secondExposed, img.exposure, mask, in.rungs, made,
+                              &limited);
     b.pose = "view";
     Json bj = Json::object();
     bj["view"] = poseBudgetJson(b);

@@ -171,7 +171,10 @@ std::vector<ViewResult> renderViews(const CameraModel& camera, const CameraSenso
       carried.push_back(contexts[k].get()), carriedIndex.push_back(k);
   std::vector<ViewResult> pass = renderPass(camera, *contexts[0], carried, settings);
   results[0] = std::move(pass[0]);
-  for (size_t i = 0; i < carried.size(); ++i) results[carriedIndex[i]] = std::move(pass[i + 1]);
+  for (size_t i = 0; i < carried.size(); ++i) {
+    results[carriedIndex[i]] = std::move(pass[i + 1]);
+    results[carriedIndex[i]].carried = true;
+  }
   for (size_t k = 1; k < panels.size(); ++k)
     if (std::find(carriedIndex.begin(), carriedIndex.end(), k) == carriedIndex.end())
       results[k] = renderPass(camera, *contexts[k], {}, settings).front();

@@ -65,6 +65,7 @@ struct ViewStats {
 struct ViewResult {
   Image image;  // R, G, B: linear white-balanced camera RGB, unexposed
   ViewStats stats;
+  bool carried = false;  // rendered in another panel's pass (renderViews; stats are the pass's)
 };
 
 // The view through `camera` of the display (MLA, panel, active area on the MLA's front plane,

@@ -93,3 +93,68 @@ TEST(ErrorBudget, TheObserversViewIsTheCamerasViewThroughTheSensorSwap) {
     worst = std::max(worst, double(std::abs(swapped.data[i] - seenByObserver.data[i])));
   EXPECT_LT(worst / peak, 1e-5);  // float accumulation only
 }
+
+// The rungs that differ from the full chain in the panel only (no subpixels; the calibrated EIA)
+// can be carried by the full chain's render (fullChainCompanions, renderViews): the budget is
+// then the same, rung for rung and bit for bit, as when each rung renders itself.
+TEST(ErrorBudget, RungsCarriedByTheViewAreTheRungsRenderedAlone) {
+  const Display d = loadDisplay(displayPathOrDefault(""));
+  const EiLayout layout = computeLayout(d);
+  Image eia(layout.eiaW, layout.eiaH, {"R", "G", "B"});
+  Rng rng(11, 0);
+  for (float& v : eia.data) v = rng.uniform();
+  Image calibrated = eia;
+  for (float& v : calibrated.data) v *= 0.8f;
+  const DisplayModel dm = makeDisplayModel(d, layout, eia, "(random)", MlaKind::Real);
+  const CameraDescription cam = loadCameraDescription("alvium-1800-u-500c");
+  ViewCameraOptions co;
+  co.width = 40;
+  const auto camera = makeViewCamera(cam, DisplayPose{}, co);
+  ViewSettings vs;
+  vs.spp = 1;
+  vs.apertureGrid = 4;
+  vs.progress = false;
+  const BudgetScene scene{&d, &layout, &eia, &calibrated, &cam, vs, 0.0};
+  const std::vector<RungPanel> companions = fullChainCompanions(scene, budgetRungs(), dm.gapMm, dm.panel->driveTable());
+  ASSERT_EQ(companions.size(), 2u);
+  EXPECT_EQ(companions[0].rung.name, "+calibration");
+  EXPECT_EQ(companions[1].rung.name, "-subpixels");
+  std::vector<const PanelEmitter*> panels{dm.panel.get()};
+  for (const RungPanel& p : companions) panels.push_back(p.panel.get());
+  const std::vector<ViewResult> views = renderViews(*camera, cam.sensor, *dm.mla, panels, dm.area, vs);
+  ASSERT_TRUE(views[1].carried && views[2].carried);
+  std::vector<MadeRungView> made{{fullChainRung(), &views[0].image, ""}};
+  for (size_t k = 0; k < companions.size(); ++k) made.push_back({companions[k].rung, &views[k + 1].image, "carried"});
+
+  // Exposed as fig11 exposes: the full chain's peak at 0.5.
+  float peak = 0.0f;
+  for (float v : views[0].image.data) peak = std::max(peak, v);
+  ASSERT_GT(peak, 0.0f);
+  const double exposure = 0.5 / peak;
+  Image reference = views[0].image, second = views[0].image;
+  for (size_t i = 0; i < reference.data.size(); ++i) {
+    reference.data[i] *= float(exposure) * (1.0f + 0.2f * rng.uniform());
+    second.data[i] *= float(exposure);
+  }
+  PixelMask mask;
+  mask.width = reference.width, mask.height = reference.height;
+  mask.on.assign(size_t(mask.width) * mask.height, 1);
+  const PoseBudget alone = poseBudget(scene, *camera, reference, second, exposure, mask, budgetRungs());
+  const PoseBudget carried = poseBudget(scene, *camera, reference, second, exposure, mask, budgetRungs(), made);
+  auto expectSame = [](const std::vector<RungResult>& a, const std::vector<RungResult>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i].skipped, b[i].skipped) << a[i].rung.name;
+      EXPECT_EQ(a[i].metrics.psnrDb, b[i].metrics.psnrDb) << a[i].rung.name;
+      EXPECT_EQ(a[i].metrics.deltaE.mean, b[i].metrics.deltaE.mean) << a[i].rung.name;
+      EXPECT_EQ(a[i].metrics.ssim, b[i].metrics.ssim) << a[i].rung.name;
+    }
+  };
+  expectSame(alone.ladder, carried.ladder);
+  expectSame(alone.removeOne, carried.removeOne);
+  // The calibrated EIA is another view, so the calibration rung moved the error.
+  EXPECT_NE(carried.ladder[5].metrics.deltaE.mean, carried.ladder[4].metrics.deltaE.mean);
+  EXPECT_EQ(carried.ladder[5].note, "carried");
+  // Without the view's pass, the ideal display and + subpixels share one (the ideal MLA, no glass).
+  EXPECT_NE(alone.ladder[1].note.find("rendered in one pass with ideal"), std::string::npos) << alone.ladder[1].note;
+}
