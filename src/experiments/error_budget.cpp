@@ -389,14 +389,17 @@ void writeBudgetPlot(const std::vector<PoseBudget>& budgets, const std::vector<s
     const RungResult& r = first.ladder[i];
     if (r.skipped) continue;
     const double v = r.metrics.deltaE.mean, base = i == 0 ? 0.0 : level;
-    const Vec3 colour = i == 0 ? Vec3(0.55f) : v >= base ? Vec3(0.84f, 0.15f, 0.16f) : Vec3(0.17f, 0.63f, 0.17f);
+    // Light tints, so that the other poses' markers (their colours in depth_error.png) stand out.
+    const Vec3 colour = i == 0 ? Vec3(0.72f) : v >= base ? Vec3(0.96f, 0.62f, 0.60f) : Vec3(0.62f, 0.85f, 0.60f);
     PlotBars bar{"", {double(i)}, {v}, 0.6, base, colour};
     p.bars.push_back(bar);
     level = v;
   }
   for (size_t k = 1; k < budgets.size(); ++k) {
     PlotSeries s{labels[k], {}, {}};
+    s.color = plotPalette(int(k));  // pose k's colour in depth_error.png (0 is the bars here)
     s.line = false;
+    s.markerRadius = 5.0;
     for (size_t i = 0; i < budgets[k].ladder.size(); ++i)
       if (!budgets[k].ladder[i].skipped) s.x.push_back(double(i)), s.y.push_back(budgets[k].ladder[i].metrics.deltaE.mean);
     p.series.push_back(s);
