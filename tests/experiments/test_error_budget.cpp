@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <memory>
+#include <tuple>
 
 #include "camera/camera_config.h"
 #include "colour_chain/chain_response.h"
@@ -62,24 +64,35 @@ TEST(ErrorBudget, UnknownRungNamesListTheValidOnes) {
   EXPECT_EQ(selectRungs({"-cover_glass"}).at(0).coverGlass, false);
 }
 
+// The default display showing random drive values (every channel matters everywhere), seen at
+// 0 deg by the default camera at 40 px, rendered at 1 stratum on a 4 x 4 aperture grid.
+struct RandomDriveScene {
+  Display d = loadDisplay(displayPathOrDefault(""));
+  EiLayout layout = computeLayout(d);
+  Image eia;
+  DisplayModel dm;
+  CameraDescription cam = loadCameraDescription("alvium-1800-u-500c");
+  std::unique_ptr<CameraModel> camera;
+  ViewSettings vs;
+  explicit RandomDriveScene(uint64_t seed) : eia(layout.eiaW, layout.eiaH, {"R", "G", "B"}) {
+    Rng rng(seed, 0);
+    for (float& v : eia.data) v = rng.uniform();
+    dm = makeDisplayModel(d, layout, eia, "(random)", MlaKind::Real);
+    ViewCameraOptions co;
+    co.width = 40;
+    camera = makeViewCamera(cam, DisplayPose{}, co);
+    vs.spp = 1;
+    vs.apertureGrid = 4;
+    vs.progress = false;
+  }
+};
+
 // The budget shares one render between rungs that differ only by the colour chain: the
 // observer's view must be the camera's view through sensorSwap, pixel by pixel (real MLA,
 // cover glass, subpixels; random drive values so that every channel matters everywhere).
 TEST(ErrorBudget, TheObserversViewIsTheCamerasViewThroughTheSensorSwap) {
-  const Display d = loadDisplay(displayPathOrDefault(""));
-  const EiLayout layout = computeLayout(d);
-  Image eia(layout.eiaW, layout.eiaH, {"R", "G", "B"});
-  Rng rng(7, 0);
-  for (float& v : eia.data) v = rng.uniform();
-  const DisplayModel dm = makeDisplayModel(d, layout, eia, "(random)", MlaKind::Real);
-  const CameraDescription cam = loadCameraDescription("alvium-1800-u-500c");
-  ViewCameraOptions co;
-  co.width = 40;
-  const auto camera = makeViewCamera(cam, DisplayPose{}, co);
-  ViewSettings vs;
-  vs.spp = 1;
-  vs.apertureGrid = 4;
-  vs.progress = false;
+  const RandomDriveScene r(7);
+  const auto& [dm, cam, camera, vs] = std::tie(r.dm, r.cam, r.camera, r.vs);
   ASSERT_TRUE(sensorSwapIsExact(vs));
   const CameraSensor observer = cieObserverSensor(cam.sensor.geometry());
   const Image seenByCamera = renderView(*camera, cam.sensor, *dm.mla, *dm.panel, dm.area, vs).image;
@@ -98,23 +111,12 @@ TEST(ErrorBudget, TheObserversViewIsTheCamerasViewThroughTheSensorSwap) {
 // can be carried by the full chain's render (fullChainCompanions, renderViews): the budget is
 // then the same, rung for rung and bit for bit, as when each rung renders itself.
 TEST(ErrorBudget, RungsCarriedByTheViewAreTheRungsRenderedAlone) {
-  const Display d = loadDisplay(displayPathOrDefault(""));
-  const EiLayout layout = computeLayout(d);
-  Image eia(layout.eiaW, layout.eiaH, {"R", "G", "B"});
-  Rng rng(11, 0);
-  for (float& v : eia.data) v = rng.uniform();
-  Image calibrated = eia;
+  const RandomDriveScene r(11);
+  const auto& [dm, cam, camera, vs] = std::tie(r.dm, r.cam, r.camera, r.vs);
+  Image calibrated = r.eia;
   for (float& v : calibrated.data) v *= 0.8f;
-  const DisplayModel dm = makeDisplayModel(d, layout, eia, "(random)", MlaKind::Real);
-  const CameraDescription cam = loadCameraDescription("alvium-1800-u-500c");
-  ViewCameraOptions co;
-  co.width = 40;
-  const auto camera = makeViewCamera(cam, DisplayPose{}, co);
-  ViewSettings vs;
-  vs.spp = 1;
-  vs.apertureGrid = 4;
-  vs.progress = false;
-  const BudgetScene scene{&d, &layout, &eia, &calibrated, &cam, vs, 0.0};
+  Rng rng(12, 0);
+  const BudgetScene scene{&r.d, &r.layout, &r.eia, &calibrated, &cam, vs, 0.0};
   const std::vector<RungPanel> companions = fullChainCompanions(scene, budgetRungs(), dm.gapMm, dm.panel->driveTable());
   ASSERT_EQ(companions.size(), 2u);
   EXPECT_EQ(companions[0].rung.name, "+calibration");
