@@ -301,68 +301,68 @@ void writeBudget(Fig11Run& run, const Fig11Result& result) {
   writeBudgetPlot(result.budgets, labels, run.out("budget.png"));
 }
 
-}  // namespace
-
-Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
-  validate(s);
-  Inputs in = loadInputs(s);
-  Fig11Result result;
-  result.fieldPath = in.field.path;
-  if (in.calibration) result.calibration = describeCalibration(s.calibrationPath, *in.calibration);
-
-  std::vector<NamedPose> poses;
-  for (const NamedPose& p : fig11Poses(s.angleDeg, in.distanceMm))
-    if (s.poses.empty() || std::find(s.poses.begin(), s.poses.end(), p.name) != s.poses.end()) poses.push_back(p);
-  // The first pose's camera (its lens focused, its exit pupil scanned: serial work) is made
-  // while the EIA is synthesized.
-  std::unique_ptr<CameraModel> firstCamera;
-  tbb::task_group background;
-  if (!poses.empty())
-    background.run([&] { firstCamera = makeViewCamera(in.camera, poses.front().pose, cameraOptions(s)); });
-
-  // 1. The EIA, as `inim eia` makes it.
+// How fig11 synthesizes its EIA: as `inim eia` does, with the run's calibration.
+SynthesisSettings synthesisSettings(const Fig11Settings& s, const Inputs& in) {
   SynthesisSettings ss;
   ss.placement = in.placement;
   ss.spp = s.eiaSpp;
   ss.seed = s.seed;
   ss.autoExposure = true;
   ss.correction = in.calibration;
+  return ss;
+}
+
+// The poses asked for, in fig11Poses' order.
+std::vector<NamedPose> selectPoses(const Fig11Settings& s, double distanceMm) {
+  std::vector<NamedPose> poses;
+  for (const NamedPose& p : fig11Poses(s.angleDeg, distanceMm))
+    if (s.poses.empty() || std::find(s.poses.begin(), s.poses.end(), p.name) != s.poses.end()) poses.push_back(p);
+  return poses;
+}
+
+// The EIA, as `inim eia` makes it, and meanwhile the first pose's camera (its lens focused, its
+// exit pupil scanned: serial work).
+SynthesisResult synthesizeWithFirstCamera(const Fig11Settings& s, const Inputs& in, const std::vector<NamedPose>& poses,
+                                          std::unique_ptr<CameraModel>& firstCamera) {
+  tbb::task_group background;
+  if (!poses.empty())
+    background.run([&] { firstCamera = makeViewCamera(in.camera, poses.front().pose, cameraOptions(s)); });
   std::optional<SynthesisResult> synthesized;
   try {
-    synthesized = synthesizeEia(in.layout, in.display.panel, *in.field.field, ss);
+    synthesized = synthesizeEia(in.layout, in.display.panel, *in.field.field, synthesisSettings(s, in));
   } catch (...) {
     waitQuietly(background);
     throw;
   }
   background.wait();
-  const SynthesisResult& eia = *synthesized;
-  result.eiaWidth = eia.eia.width, result.eiaHeight = eia.eia.height, result.eiaSeconds = eia.stats.seconds;
-  if (observer.eiaDone) observer.eiaDone(result);
-  DisplayModel dm = makeDisplayModel(in.display, in.layout, eia.eia, "(synthesized EIA)", s.mla);
-  // The budget's EIAs: its ladder starts from the uncalibrated one; its calibration rung uses
-  // the run's calibration (the uncalibrated EIA then made again) or the budget's own (applied to
-  // the EIA made, which is exact: synthesis/eia_correction.h).
-  std::optional<Image> otherEia;
-  BudgetScene scene;
-  if (s.budget) {
-    if (in.calibration) {
-      ss.correction = nullptr;
-      otherEia = synthesizeEia(in.layout, in.display.panel, *in.field.field, ss).eia;
-    } else if (in.budgetCalibration) {
-      otherEia = correctedEia(in.layout, eia.eia, *in.budgetCalibration);
-    }
-    const Image* calibrated = in.calibration ? &eia.eia : (otherEia ? &*otherEia : nullptr);
-    scene = BudgetScene{&in.display, &in.layout, in.calibration ? &*otherEia : &eia.eia, calibrated, &in.camera, {}};
-    scene.view.spp = s.budgetSpp;
-    scene.view.apertureGrid = s.apertureGrid;
-    scene.view.seed = s.seed;
-  }
+  return std::move(*synthesized);
+}
 
-  // 2. Five poses: reconstruction and reference through the same camera.
-  // Writing and comparing are mostly serial: each pose is written and compared while the next
-  // one renders (one comparison at a time, in pose order, so the outputs do not depend on it).
-  Fig11Run run(s, in, dm, eia.stats.exposureUsed * in.display.panel.peakLuminanceCdM2, s.budget ? &scene : nullptr,
-               std::move(firstCamera));
+// The budget's EIAs: its ladder starts from the uncalibrated one; its calibration rung uses the
+// run's calibration (the uncalibrated EIA then made again) or the budget's own (applied to the
+// EIA made, which is exact: synthesis/eia_correction.h). `otherEia` holds the one made here.
+BudgetScene budgetScene(const Fig11Settings& s, const Inputs& in, const Image& eia, std::optional<Image>& otherEia) {
+  if (in.calibration) {
+    SynthesisSettings ss = synthesisSettings(s, in);
+    ss.correction = nullptr;
+    otherEia = synthesizeEia(in.layout, in.display.panel, *in.field.field, ss).eia;
+  } else if (in.budgetCalibration) {
+    otherEia = correctedEia(in.layout, eia, *in.budgetCalibration);
+  }
+  const Image* calibrated = in.calibration ? &eia : (otherEia ? &*otherEia : nullptr);
+  BudgetScene scene{&in.display, &in.layout, in.calibration ? &*otherEia : &eia, calibrated, &in.camera, {}};
+  scene.view.spp = s.budgetSpp;
+  scene.view.apertureGrid = s.apertureGrid;
+  scene.view.seed = s.seed;
+  return scene;
+}
+
+// Every pose rendered, then written and compared (mostly serial work) while the next one renders,
+// one comparison at a time in pose order, so the outputs do not depend on it; the EIA is written
+// while the first renders. Each pose is reported to `observer` as it is done.
+void renderAndComparePoses(Fig11Run& run, const std::vector<NamedPose>& poses, const SynthesisResult& eia,
+                           const Panel& panel, const Fig11Observer& observer, Fig11Result& result) {
+  tbb::task_group background;
   std::vector<PoseRenders> renders(poses.size());
   std::vector<Fig11View> compared(poses.size());
   auto report = [&](size_t i) {
@@ -378,7 +378,7 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
     const std::string eiaExr = run.out("eia.exr"), eiaPng = run.out("eia.png");
     background.run([&] {
       writeEiaExr(eia.eia, eia.stats.exposureUsed, eiaExr);
-      writeImage(encodeForPanel(eia.eia, in.display.panel.eotf), eiaPng);
+      writeImage(encodeForPanel(eia.eia, panel.eotf), eiaPng);
     });
     for (size_t i = 0; i < poses.size(); ++i) {
       renders[i] = run.renderPose(poses[i]);
@@ -394,9 +394,10 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
     throw;
   }
   result.budgets = run.budgets;
-  if (s.budget) writeBudget(run, result);
+}
 
-  // 3. The contact sheet and the metrics; every output lands together.
+// The contact sheet, the metrics and the depth figure; then every output lands together.
+void writeSheetAndMetrics(Fig11Run& run, const Fig11Settings& s, const Inputs& in) {
   ContactSheetOptions cso;
   cso.heading = "inim fig11: " + fs::path(in.field.path).filename().string() + " on " + in.display.name + ", " +
                 in.camera.name + " at " + std::to_string(int(std::lround(in.distanceMm))) + " mm, MLA " +
@@ -409,6 +410,35 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   writeCsv(run.out("metrics.csv"), metricsCsvHeader("view"), run.rows);
   run.depth.writeFigure(in.display);
   run.outputs.commit();
+}
+
+}  // namespace
+
+Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
+  validate(s);
+  Inputs in = loadInputs(s);
+  Fig11Result result;
+  result.fieldPath = in.field.path;
+  if (in.calibration) result.calibration = describeCalibration(s.calibrationPath, *in.calibration);
+  const std::vector<NamedPose> poses = selectPoses(s, in.distanceMm);
+
+  // 1. The EIA, as `inim eia` makes it.
+  std::unique_ptr<CameraModel> firstCamera;
+  const SynthesisResult eia = synthesizeWithFirstCamera(s, in, poses, firstCamera);
+  result.eiaWidth = eia.eia.width, result.eiaHeight = eia.eia.height, result.eiaSeconds = eia.stats.seconds;
+  if (observer.eiaDone) observer.eiaDone(result);
+  DisplayModel dm = makeDisplayModel(in.display, in.layout, eia.eia, "(synthesized EIA)", s.mla);
+  std::optional<Image> otherEia;
+  const BudgetScene scene = s.budget ? budgetScene(s, in, eia.eia, otherEia) : BudgetScene{};
+
+  // 2. Five poses: reconstruction and reference through the same camera.
+  Fig11Run run(s, in, dm, eia.stats.exposureUsed * in.display.panel.peakLuminanceCdM2, s.budget ? &scene : nullptr,
+               std::move(firstCamera));
+  renderAndComparePoses(run, poses, eia, in.display.panel, observer, result);
+  if (s.budget) writeBudget(run, result);
+
+  // 3. The contact sheet and the metrics; every output lands together.
+  writeSheetAndMetrics(run, s, in);
   return result;
 }
 
