@@ -102,7 +102,8 @@ Image readEia(const std::string& path) {
 
 }  // namespace
 
-ViewRunResult renderViewRun(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded) {
+ViewRunResult renderViewRun(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded,
+                            const CarriedPanels& carried) {
   const auto t0 = std::chrono::steady_clock::now();
   checkEiaPath(s.eiaPath);
   ViewRunResult r;
@@ -124,7 +125,12 @@ ViewRunResult renderViewRun(const ViewRunSettings& s, const std::function<void(c
   r.coverGlass = dm.panel->hasCoverGlass();
   if (loaded) loaded(r);
   r.loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.render = renderView(*r.camera.camera, r.camera.desc.sensor, *dm.mla, *dm.panel, dm.area, s.view);
+  std::vector<const PanelEmitter*> panels{dm.panel.get()};
+  if (carried)
+    for (const PanelEmitter* p : carried(r, dm)) panels.push_back(p);
+  std::vector<ViewResult> views = renderViews(*r.camera.camera, r.camera.desc.sensor, *dm.mla, panels, dm.area, s.view);
+  r.render = std::move(views[0]);
+  for (size_t k = 1; k < views.size(); ++k) r.carriedViews.push_back(std::move(views[k].image));
   return r;
 }
 

@@ -67,8 +67,13 @@ struct ViewRunResult {
   std::shared_ptr<const Image> eia;   // its drive values as read
   double loadSeconds = 0.0;
   ViewResult render;
+  std::vector<Image> carriedViews;  // of the panels CarriedPanels gave, rendered in the view's pass
   double exposureFactor = 1.0;
 };
+
+// Panels to see in the view's pass (renderViews: each another subpixel layout or drive of the
+// view's panel), made from the loaded run and its display model; they must outlive the render.
+using CarriedPanels = std::function<std::vector<const PanelEmitter*>(const ViewRunResult&, const DisplayModel&)>;
 
 // `inim view`'s estimator policy on `view`: "auto" picks quadrature when the primaries are
 // sampled (it integrates their spectra) and footprint otherwise; any other name is parsed
@@ -85,7 +90,9 @@ void checkEiaPath(const std::string& path);
 ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded = {});
 // The same without writing anything (exposureFactor stays 1): for runs that expose and write the
 // view with other outputs (experiments/view_reference.h).
-ViewRunResult renderViewRun(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded = {});
+// `carried` (optional): panels rendered with the view (their views in carriedViews).
+ViewRunResult renderViewRun(const ViewRunSettings& s, const std::function<void(const ViewRunResult&)>& loaded = {},
+                            const CarriedPanels& carried = {});
 // The loaded display, EIA and camera as `inim view` prints them.
 std::string loadedText(const ViewRunSettings& s, const ViewRunResult& r);
 // The render's lines as `inim view` prints them: samples and time, rays, the estimator's counts.

@@ -94,7 +94,20 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
   r.placement = in.placement;
   r.eiaExposure = in.eiaExposure;
   r.eiaExposureFromHeader = in.fromHeader;
-  r.view = renderViewRun(s, loaded);
+  // The budget's rungs that differ from the view in the panel only are seen in its pass.
+  std::optional<Image> calibrated;
+  std::vector<RungPanel> carried;
+  auto carry = [&](const ViewRunResult& v, const DisplayModel& dm) {
+    std::vector<const PanelEmitter*> panels;
+    if (!rs.budget || !viewIsFullChain(s, rs)) return panels;
+    if (in.calibration) calibrated = correctedEia(v.layout, *v.eia, *in.calibration);
+    const BudgetScene scene{&v.display, &v.layout, v.eia.get(), calibrated ? &*calibrated : nullptr, &v.camera.desc,
+                            s.view, v.gapMm};
+    carried = fullChainCompanions(scene, in.rungs, v.gapMm, dm.panel->driveTable());
+    for (const RungPanel& p : carried) panels.push_back(p.panel.get());
+    return panels;
+  };
+  r.view = renderViewRun(s, loaded, carry);
   const CameraSetup& cs = r.view.camera;
 
   // The reference, with its depth, and a view-sized comparison as fig11 makes it.
@@ -165,14 +178,15 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
     const Image secondRef = renderReference(*in.field.field, in.placement.toDisplay(), *cs.camera, cs.desc.sensor, second).image;
     const Image secondExposed = scaledImage(secondRef, refToCdM2 * img.exposure);
     const Image eia = linearEia(*r.view.eia, lowerExtension(s.eiaPath) == ".png", r.view.display.panel);
-    std::optional<Image> calibrated;
-    if (in.calibration) calibrated = correctedEia(r.view.layout, eia, *in.calibration);
+    if (in.calibration && !calibrated) calibrated = correctedEia(r.view.layout, eia, *in.calibration);
     BudgetScene scene{&r.view.display, &r.view.layout, &eia, calibrated ? &*calibrated : nullptr, &cs.desc, s.view,
                       r.view.gapMm};
     scene.view.spp = rs.budgetSpp;
     scene.view.progress = false;
     std::vector<MadeRungView> made;
     if (viewIsFullChain(s, rs)) made.push_back({fullChainRung(), &r.view.render.image, ""});
+    for (size_t k = 0; k < carried.size(); ++k)
+      made.push_back({carried[k].rung, &r.view.carriedViews[k], "rendered in one pass with the view"});
     PoseBudget b = poseBudget(scene, *cs.camera, img.refExposed, secondExposed, img.exposure, mask, in.rungs, made,
                               &limited);
     b.pose = "view";
