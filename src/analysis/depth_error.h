@@ -87,8 +87,8 @@ enum class DepthErrorQuantity { RelativeRmse, DeltaE2000 };
 // holds every bin and the marked planes; the band is clipped to it. The y axis starts at 0, or
 // is logarithmic when the values spread over more than a decade.
 Plot depthErrorPlot(const std::vector<DepthErrorCurve>& curves, const DepthMarks& marks, DepthErrorQuantity q);
-// Relative RMSE above (with the legend), mean CIEDE2000 below, on the same z range: one image
-// (PNG-ready sRGB).
+// Relative RMSE above (with the legend), mean CIEDE2000 below, on the same z range with their
+// plot areas lined up (alignPlotAreas): one image (PNG-ready sRGB).
 Image depthErrorFigure(const std::vector<DepthErrorCurve>& curves, const DepthMarks& marks,
                        const std::string& title = "Error against depth");
 

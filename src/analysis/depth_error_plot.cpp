@@ -106,6 +106,7 @@ Image depthErrorFigure(const std::vector<DepthErrorCurve>& curves, const DepthMa
   top.title = title + ": relative RMSE";
   bottom.title = title + ": mean CIEDE2000 (curves and marks as above)";
   bottom.legend = false;
+  alignPlotAreas({&top, &bottom});
   const Image a = renderPlot(top), b = renderPlot(bottom);
   Image out(std::max(a.width, b.width), a.height + b.height, {"R", "G", "B"});
   std::fill(out.data.begin(), out.data.end(), 1.0f);

@@ -114,6 +114,10 @@ struct Plot {
   std::vector<PlotMarker> hMarkers;  // horizontal lines at y = value
   bool legend = true;
   bool grid = true;
+  // Panels stacked in one figure line up their plot areas (alignPlotAreas): the area's left
+  // edge at least areaLeftMin px from the image's left edge, its right edge at least
+  // areaRightInset px from the image's right edge. 0: as the plot's own layout needs.
+  double areaLeftMin = 0.0, areaRightInset = 0.0;
   double fontSize = 13.0;  // px, of tick labels, legend and annotations (titles a little larger)
 };
 
@@ -154,6 +158,9 @@ struct PlotFrame {
 // categories are given for the y axis or a log x axis.
 PlotFrame plotFrame(const Plot& plot);
 Image renderPlot(const Plot& plot);
+// Sets the plots' areaLeftMin and areaRightInset so that, all of the same width, their plot
+// areas share one left and one right edge (an x axis read across panels stacked vertically).
+void alignPlotAreas(std::vector<Plot*> plots);
 // renderPlot + writeImage (PNG by extension).
 void writePlot(const Plot& plot, const std::string& path);
 

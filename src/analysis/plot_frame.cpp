@@ -158,7 +158,7 @@ void horizontalLayout(const Plot& p, const plotimpl::Style& st, double colorBarW
       f.xTicks.empty() ? 0.0 : draw::measureText(plotimpl::xTickLabel(p, f, f.xTicks.back()), st.tick).width;
   const double room = colorBarW > 0.0 || reserve > 0.0 ? std::max(lastX / 2.0 - p.fontSize, 0.0)
                                                        : std::max(lastX / 2.0, st.gap);
-  f.right = std::floor(p.width - st.margin - room - colorBarW - reserve);
+  f.right = std::floor(p.width - std::max(st.margin + room + colorBarW + reserve, p.areaRightInset));
   if (colorBarW > 0.0) {
     f.colorBar.x0 = f.right + std::round(p.fontSize);
     f.colorBar.x1 = f.colorBar.x0 + std::round(1.2 * p.fontSize);
@@ -254,8 +254,9 @@ PlotFrame plotFrame(const Plot& p) {
   const double th = draw::measureText("0", st.tick).height;
   const double yTitle = p.y.title.empty() ? 0.0 : draw::measureText(p.y.title, st.axisTitle).height + st.gap;
   const double xTitle = p.x.title.empty() ? 0.0 : draw::measureText(p.x.title, st.axisTitle).height + st.gap;
-  const double title = p.title.empty() ? 0.0 : draw::measureText(p.title, st.title).height + st.gap;
-  f.left = std::ceil(st.margin + yTitle + widestLabel(f.yTicks, f.logY, st.tick) + st.tickLength + st.gap);
+  const double title = plotimpl::titleHeight(p, st);
+  f.left = std::ceil(std::max(st.margin + yTitle + widestLabel(f.yTicks, f.logY, st.tick) + st.tickLength + st.gap,
+                              p.areaLeftMin));
   f.top = std::ceil(st.margin + title + th / 2.0);
   f.bottom = std::floor(p.height - st.margin - xTitle - th - st.tickLength - st.gap);
   const double colorBarW = p.heatMap ? colorBarRange(p, st, f) : 0.0;
@@ -265,6 +266,23 @@ PlotFrame plotFrame(const Plot& p) {
   placeLegend(p, st, colorBarW, f);
   checkRoom(p, f);
   return f;
+}
+
+void alignPlotAreas(std::vector<Plot*> plots) {
+  // A narrower area can move a legend outside, which narrows it again: repeat until settled.
+  for (int round = 0; round < 4; ++round) {
+    double left = 0.0, inset = 0.0;
+    for (const Plot* p : plots) {
+      const PlotFrame f = plotFrame(*p);
+      left = std::max(left, f.left), inset = std::max(inset, p->width - f.right);
+    }
+    bool settled = true;
+    for (Plot* p : plots) {
+      settled = settled && p->areaLeftMin == left && p->areaRightInset == inset;
+      p->areaLeftMin = left, p->areaRightInset = inset;
+    }
+    if (settled) return;
+  }
 }
 
 }  // namespace inim

@@ -16,6 +16,12 @@ struct Style {
   explicit Style(const Plot& p);
 };
 
+// The plot's title in lines that each fit the image's width between the margins (broken at
+// spaces; a single word wider than that stays whole). Empty for no title.
+std::vector<std::string> titleLines(const Plot& p, const Style& st);
+// The height the title takes above the plot area (its lines and a gap), 0 without one.
+double titleHeight(const Plot& p, const Style& st);
+
 bool usable(double v, bool log);  // finite, and > 0 on a log axis
 // The label of tick t among `ticks` (decimals from their spacing; each its own on a log axis).
 std::string tickLabel(const std::vector<double>& ticks, bool log, double t);

@@ -2,6 +2,7 @@
 // annotations and the labels of marker lines.
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "analysis/plot_internal.h"
 
@@ -17,6 +18,25 @@ Style::Style(const Plot& p)
       margin(std::round(0.7 * p.fontSize)),
       tickLength(std::round(0.4 * p.fontSize)),
       gap(std::round(0.3 * p.fontSize)) {}
+
+std::vector<std::string> titleLines(const Plot& p, const Style& st) {
+  std::vector<std::string> lines;
+  const double room = p.width - 2.0 * st.margin;
+  std::istringstream words(p.title);
+  std::string word;
+  while (words >> word) {
+    if (!lines.empty() && draw::measureText(lines.back() + " " + word, st.title).width <= room)
+      lines.back() += " " + word;
+    else
+      lines.push_back(word);
+  }
+  return lines;
+}
+
+double titleHeight(const Plot& p, const Style& st) {
+  const auto lines = titleLines(p, st);
+  return lines.empty() ? 0.0 : lines.size() * draw::measureText("Ag", st.title).height + st.gap;
+}
 
 Vec3 seriesColor(const Plot& p, size_t i) { return p.series[i].color.value_or(plotPalette(int(i))); }
 Vec3 polygonColor(const Plot& p, size_t i) {

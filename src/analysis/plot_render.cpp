@@ -69,11 +69,14 @@ void drawColorBar(draw::Canvas& cv, const Plot& p, const PlotFrame& f, const Sty
 
 void drawTitles(draw::Canvas& cv, const Plot& p, const PlotFrame& f, const Style& st) {
   const double cx = 0.5 * (f.left + f.right);
-  if (!p.title.empty()) {
-    // Centred over the plot area, moved left (then right) to stay inside the image.
-    const double hw = 0.5 * draw::measureText(p.title, st.title).width;
-    cv.text(p.title, {std::max(st.margin + hw, std::min(cx, p.width - st.margin - hw)), st.margin}, st.title, kBlack,
+  // Each line centred over the plot area, moved left (then right) to stay inside the image.
+  const double lineHeight = draw::measureText("Ag", st.title).height;
+  double y = st.margin;
+  for (const std::string& line : titleLines(p, st)) {
+    const double hw = 0.5 * draw::measureText(line, st.title).width;
+    cv.text(line, {std::max(st.margin + hw, std::min(cx, p.width - st.margin - hw)), y}, st.title, kBlack,
             {Align::Centre, Align::Start});
+    y += lineHeight;
   }
   if (!p.x.title.empty())
     cv.text(p.x.title, {cx, p.height - st.margin}, st.axisTitle, kBlack, {Align::Centre, Align::End});

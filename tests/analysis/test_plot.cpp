@@ -301,6 +301,30 @@ TEST(Plot, LongTitleStaysInsideTheImage) {
   EXPECT_EQ(darkIn(img, p.width - margin + 2, 0, p.width, f.top - 4), 0);
 }
 
+// A title wider than the image is broken at spaces into lines that each fit; the plot area
+// moves down by the added lines.
+TEST(Plot, TitleWiderThanTheImageWrapsIntoLinesThatFit) {
+  Plot p;
+  p.width = 360, p.height = 300;
+  p.title = "Short";
+  const PlotFrame one = plotFrame(p);
+  p.title = "Error against depth at 0 degrees, against the band-limited reference: default scene";
+  const double margin = std::round(0.7 * p.fontSize);
+  const draw::Font titleFont{std::round(1.25 * p.fontSize), true};
+  ASSERT_GT(draw::measureText(p.title, titleFont).width, 2.0 * (p.width - 2 * margin));  // three lines at least
+  const PlotFrame f = plotFrame(p);
+  const double line = draw::measureText("Ag", titleFont).height;
+  const double lines = std::round((f.top - one.top) / line) + 1;
+  EXPECT_NEAR(f.top - one.top, (lines - 1) * line, 1.0);
+  EXPECT_GE(lines, 3);
+  const Image img = renderPlot(p);
+  // Ink on every line, none beyond the margins.
+  for (int k = 0; k < int(lines); ++k)
+    EXPECT_GT(darkIn(img, margin, margin + k * line, p.width - margin, margin + (k + 1) * line), 30) << "line " << k;
+  EXPECT_EQ(darkIn(img, 0, 0, margin - 2, f.top - 4), 0);
+  EXPECT_EQ(darkIn(img, p.width - margin + 2, 0, p.width, f.top - 4), 0);
+}
+
 TEST(Plot, RenderingIsDeterministicAcrossThreads) {
   Plot p;
   p.title = "ψ/2 ± 0.5°";

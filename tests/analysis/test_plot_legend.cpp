@@ -124,6 +124,32 @@ TEST(PlotLegend, OutsideWhenNoRoomInside) {
   EXPECT_EQ(darkIn(img, f.right + 2, f.legend.y1 + 2, p.width, f.bottom), 0);  // nothing else out there
 }
 
+// Panels stacked in one figure: one with its legend outside and narrow tick labels, one
+// without a legend and with wide ones. Aligned, their plot areas share both edges, and the
+// legend still sits right of the area, clear of it.
+TEST(PlotLegend, StackedPanelsLineUpWhenTheLegendGoesOutside) {
+  Plot top = basePlot();
+  PlotSeries z{"zigzag", {}, {}};
+  for (int i = 0; i <= 120; ++i) z.x.push_back(i / 12.0), z.y.push_back(i % 2 ? 10.0 : 0.0);
+  z.markers = false;
+  top.series.push_back(z);
+  Plot bottom = basePlot();
+  bottom.legend = false;
+  bottom.y.max = 123450.0;  // wide tick labels
+  bottom.series.push_back(curve("wide labels", [](double x) { return 12345.0 * x; }));
+  ASSERT_TRUE(plotFrame(top).legendOutside);
+  ASSERT_NE(plotFrame(top).right, plotFrame(bottom).right);
+  ASSERT_NE(plotFrame(top).left, plotFrame(bottom).left);
+  alignPlotAreas({&top, &bottom});
+  const PlotFrame a = plotFrame(top), b = plotFrame(bottom);
+  EXPECT_EQ(a.left, b.left);
+  EXPECT_EQ(a.right, b.right);
+  EXPECT_TRUE(a.legendOutside);
+  EXPECT_GE(a.legend.x0, a.right + 2.0);
+  EXPECT_EQ(a.xMin, b.xMin);
+  EXPECT_EQ(a.xMax, b.xMax);
+}
+
 TEST(PlotLegend, ListsOnlyNamedLayersAndNothingWithoutNames) {
   Plot p = basePlot();
   PlotSeries unnamed{"", {1.0, 9.0}, {1.0, 2.0}};
