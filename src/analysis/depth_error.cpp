@@ -14,16 +14,17 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-void checkInputs(const Image& ref, const Image& rec, const std::vector<float>& z, const std::vector<float>& a,
-                 const PixelMask* mask, const DepthBinning& b, const std::vector<float>* de) {
+void checkInputs(const Image& ref, const Image& rec, const DepthMap& depth, const PixelMask* mask,
+                 const DepthBinning& b, const std::vector<float>* de) {
   requireSameSize(ref, rec, "reference", "reconstruction");
   const size_t n = size_t(ref.width) * size_t(ref.height);
   auto sized = [&](size_t got, const char* key) {
     if (got != n)
       throw InputError("", key, std::to_string(got) + " values", std::to_string(n) + " (one per pixel)");
   };
-  sized(z.size(), "depth");
-  sized(a.size(), "coverage");
+  sized(depth.z.size(), "depth");
+  sized(depth.coverage.size(), "coverage");
+  if (!depth.spread.empty()) sized(depth.spread.size(), "depth_spread");
   if (de) sized(de->size(), "delta_e");
   if (mask && (mask->width != ref.width || mask->height != ref.height))
     throw InputError(mask->source, "mask", std::to_string(mask->width) + "x" + std::to_string(mask->height),
@@ -64,19 +65,18 @@ std::pair<double, double> depthRange(const std::vector<size_t>& pixels, const st
 }
 
 struct BinSums {
-  int64_t pixels = 0;
+  int64_t pixels = 0, mixed = 0;
   double diff2 = 0.0, ref2 = 0.0, de = 0.0;
 };
 
 }  // namespace
 
-std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstruction,
-                                   const std::vector<float>& depthZ, const std::vector<float>& coverage,
+std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstruction, const DepthMap& depth,
                                    const PixelMask* mask, const DepthBinning& b, const std::vector<float>* deltaE) {
-  checkInputs(reference, reconstruction, depthZ, coverage, mask, b, deltaE);
-  const std::vector<size_t> pixels = countedPixels(reference, depthZ, coverage, mask, b.minCoverage);
+  checkInputs(reference, reconstruction, depth, mask, b, deltaE);
+  const std::vector<size_t> pixels = countedPixels(reference, depth.z, depth.coverage, mask, b.minCoverage);
   if (pixels.empty()) return {};
-  const auto [lo, hi] = depthRange(pixels, depthZ, b);
+  const auto [lo, hi] = depthRange(pixels, depth.z, b);
   const std::vector<float> ref = colorValues(reference, "reference"), rec = colorValues(reconstruction, "reconstruction");
   std::vector<float> ownDe;
   if (!deltaE) ownDe = deltaE2000Map(reference, reconstruction);
@@ -85,9 +85,13 @@ std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstr
   const double width = (hi - lo) / double(b.count);
   std::vector<BinSums> sums(size_t(b.count));
   for (size_t i : pixels) {
-    const double z = depthZ[i];
+    const double z = depth.z[i];
     if (z < lo || z > hi) continue;
     BinSums& s = sums[size_t(std::min(b.count - 1, int((z - lo) / width)))];
+    if (b.leaveOutMixed && !depth.spread.empty() && depth.spread[i] > width) {
+      ++s.mixed;
+      continue;
+    }
     ++s.pixels;
     for (int c = 0; c < 3; ++c) {
       const double r = ref[3 * i + size_t(c)], d = double(rec[3 * i + size_t(c)]) - r;
@@ -105,6 +109,7 @@ std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstr
     o.zHi = k + 1 == b.count ? hi : lo + (k + 1) * width;
     o.zCentre = 0.5 * (o.zLo + o.zHi);
     o.pixels = s.pixels;
+    o.mixedPixels = s.mixed;
     const bool enough = s.pixels >= std::max<int64_t>(1, b.minPixels);
     o.relRmse = enough && s.ref2 > 0.0 ? std::sqrt(s.diff2 / s.ref2) : kNaN;  // the means' 1/n cancels
     o.de2000Mean = enough ? s.de / double(s.pixels) : kNaN;
@@ -116,20 +121,24 @@ Json depthBinsJson(const std::vector<DepthBin>& bins) {
   auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
   Json a = Json::array();
   for (const DepthBin& b : bins)
-    a.push_back({{"z_lo", b.zLo}, {"z_hi", b.zHi}, {"pixels", b.pixels}, {"rel_rmse", num(b.relRmse)},
+    a.push_back({{"z_lo", b.zLo},
+                 {"z_hi", b.zHi},
+                 {"pixels", b.pixels},
+                 {"mixed_pixels", b.mixedPixels},
+                 {"rel_rmse", num(b.relRmse)},
                  {"de2000_mean", num(b.de2000Mean)}});
   return a;
 }
 
 std::vector<std::string> depthBinsCsvHeader() {
-  return {"z_lo_mm", "z_hi_mm", "z_centre_mm", "pixels", "rel_rmse", "de2000_mean"};
+  return {"z_lo_mm", "z_hi_mm", "z_centre_mm", "pixels", "mixed_pixels", "rel_rmse", "de2000_mean"};
 }
 
 std::vector<std::vector<std::string>> depthBinsCsvRows(const std::vector<DepthBin>& bins) {
   std::vector<std::vector<std::string>> rows;
   for (const DepthBin& b : bins)
     rows.push_back({csvNumber(b.zLo), csvNumber(b.zHi), csvNumber(b.zCentre), std::to_string(b.pixels),
-                    csvNumber(b.relRmse), csvNumber(b.de2000Mean)});
+                    std::to_string(b.mixedPixels), csvNumber(b.relRmse), csvNumber(b.de2000Mean)});
   return rows;
 }
 

@@ -3,9 +3,12 @@
 // binned by the depth of the scene surface each pixel sees (the reference's Z channel,
 // view/reference_renderer.h), and a figure of it with the planes that explain it marked.
 //
-// A pixel counts when the mask says so and its coverage (the reference's A channel) is >= 0.5:
-// it sees a surface rather than a mix of surface and background. Bins are equal slices of z;
-// per bin:
+// A pixel counts when the mask says so, its coverage (the reference's A channel) is >= 0.5 (it
+// sees a surface rather than a mix of surface and background) and the surfaces its rays hit lie
+// within one bin's width in z (the dZ channel): a pixel on an edge between a near and a far
+// surface has a mean z where neither is, and would put their error in a bin between them. Such
+// mixed pixels are counted in the bin of their mean z but left out of its metrics. Bins are
+// equal slices of z; per bin:
 //   relative RMSE  sqrt(mean |rec - ref|^2) / sqrt(mean |ref|^2), |.| over R, G, B, on the
 //                  images as given (fig11: linear camera RGB, exposed alike);
 //   mean CIEDE2000 of a per-pixel map (deltaE2000Map of the encoded images, as compareImages
@@ -14,7 +17,7 @@
 //
 //   DepthBinning b;                                // 24 bins over the 1st..99th percentile of z
 //   std::vector<float> de = deltaE2000Map(refSrgb, recSrgb, "srgb", "srgb");
-//   auto bins = errorVsDepth(ref, rec, z, a, &mask, b, &de);
+//   auto bins = errorVsDepth(ref, rec, {z, a, dz}, &mask, b, &de);
 //   writePlot(depthErrorPlot({{"0°", bins}}, marks, DepthErrorQuantity::RelativeRmse), "e.png");
 #include <cstdint>
 #include <optional>
@@ -28,6 +31,14 @@
 
 namespace inim {
 
+// A reference's depth per pixel (view/reference_renderer.h, channels A, Z and dZ): width x
+// height, row-major.
+struct DepthMap {
+  std::vector<float> z;         // mean display-frame z of the surfaces the pixel's rays hit, mm
+  std::vector<float> coverage;  // the fraction of its rays that hit a surface
+  std::vector<float> spread;    // max - min of those surfaces' z, mm; empty: unknown (taken as 0)
+};
+
 struct DepthBinning {
   // The z range binned, mm; default: the 1st and 99th percentiles of the counted pixels' z
   // (pixels outside the range are left out). A range of zero width (a flat scene) is widened
@@ -36,27 +47,28 @@ struct DepthBinning {
   int count = 24;             // bins, >= 1
   double minCoverage = 0.5;   // a pixel counts from this coverage (A) up
   int64_t minPixels = 20;     // fewer pixels in a bin: NaN metrics
+  bool leaveOutMixed = true;  // pixels whose surfaces spread over more than a bin's width
 };
 
 struct DepthBin {
   double zLo = 0.0, zHi = 0.0, zCentre = 0.0;  // mm, display frame
-  int64_t pixels = 0;
+  int64_t pixels = 0;       // the pixels its metrics are over
+  int64_t mixedPixels = 0;  // left out: their surfaces spread over more than the bin's width
   double relRmse = 0.0;     // NaN when pixels < minPixels or the reference is black there
   double de2000Mean = 0.0;  // NaN when pixels < minPixels
 };
 
-// `depthZ` and `coverage`: width x height, row-major (the reference's Z and A channels).
-// `deltaE`: an optional per-pixel CIEDE2000 map of the same size (see above). `mask`: null for
-// every pixel. Empty when no pixel counts. InputError when sizes disagree or the binning is
+// `deltaE`: an optional per-pixel CIEDE2000 map of the images' size (see above). `mask`: null
+// for every pixel. Empty when no pixel counts. InputError when sizes disagree or the binning is
 // invalid (count < 1, minZ >= maxZ when both given).
-std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstruction,
-                                   const std::vector<float>& depthZ, const std::vector<float>& coverage,
+std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstruction, const DepthMap& depth,
                                    const PixelMask* mask, const DepthBinning& b = {},
                                    const std::vector<float>* deltaE = nullptr);
 
-// [{z_lo, z_hi, pixels, rel_rmse, de2000_mean}, ...]; NaN metrics as null.
+// [{z_lo, z_hi, pixels, mixed_pixels, rel_rmse, de2000_mean}, ...]; NaN metrics as null.
 Json depthBinsJson(const std::vector<DepthBin>& bins);
-// CSV: z_lo_mm, z_hi_mm, z_centre_mm, pixels, rel_rmse, de2000_mean ("nan" where NaN).
+// CSV: z_lo_mm, z_hi_mm, z_centre_mm, pixels, mixed_pixels, rel_rmse, de2000_mean ("nan" where
+// NaN).
 std::vector<std::string> depthBinsCsvHeader();
 std::vector<std::vector<std::string>> depthBinsCsvRows(const std::vector<DepthBin>& bins);
 

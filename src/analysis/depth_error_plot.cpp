@@ -106,6 +106,10 @@ Image depthErrorFigure(const std::vector<DepthErrorCurve>& curves, const DepthMa
   top.title = title + ": relative RMSE";
   bottom.title = title + ": mean CIEDE2000 (curves and marks as above)";
   bottom.legend = false;
+  if (const PlotFrame f = plotFrame(top); f.legendOutside) {  // the figure widens for it, not the plots narrow
+    top.width += int(std::ceil(f.legend.x1 - f.legend.x0 + top.fontSize));
+    bottom.width = top.width;
+  }
   alignPlotAreas({&top, &bottom});
   const Image a = renderPlot(top), b = renderPlot(bottom);
   Image out(std::max(a.width, b.width), a.height + b.height, {"R", "G", "B"});

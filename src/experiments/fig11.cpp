@@ -223,7 +223,7 @@ class Fig11Run {
     m["band_limited"] = metricsJson(v.bandLimitedMetrics);
     m["band_limited"]["filter"] = bandLimitJson(bandLimitOf(camera));
     if (!depth.present) return;
-    v.depthBinsBandLimited = errorVsDepth(limited, img.recExposed, depth.z, depth.coverage, &mask, {}, &de);
+    v.depthBinsBandLimited = errorVsDepth(limited, img.recExposed, depth, &mask, {}, &de);
     m["depth_error_band_limited"] = depthBinsJson(v.depthBinsBandLimited);
   }
 

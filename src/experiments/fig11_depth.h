@@ -8,7 +8,7 @@
 // reconstruction (through the cover glass when the display has one) and its depth-of-field
 // band (|z| <= DisplayInfo's depth range: lateral sampling max(P, P |z| / g) <= 2P) marked.
 //
-// Outputs, in the run's OutputSet: depth_error_<pose>.csv, reference_<pose>_depth.exr (A, Z),
+// Outputs, in the run's OutputSet: depth_error_<pose>.csv, reference_<pose>_depth.exr (A, Z, dZ),
 // depth_error.png; metrics.json gains "depth_error" per pose.
 //
 //   ReferenceDepth d = takeDepthChannels(ref.image);        // before exposing
@@ -27,13 +27,13 @@
 
 namespace inim {
 
-struct ReferenceDepth {
+// The reference's Z, A and dZ channels.
+struct ReferenceDepth : DepthMap {
   bool present = false;
-  std::vector<float> z, coverage;  // width x height, row-major: the Z and A channels
   int width = 0, height = 0;
 };
 
-// Moves the A and Z channels out of `reference` (which keeps its other channels, in order).
+// Moves the A, Z and dZ channels out of `reference` (which keeps its other channels, in order).
 // Nothing is present when the image has no Z channel.
 ReferenceDepth takeDepthChannels(Image& reference);
 

@@ -151,7 +151,7 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
   const Image limited = bandLimitedReference(img.refExposed, depth, band);
   r.bandLimitedMetrics = compareImages(cameraRgbToSrgb(limited, cs.desc.sensor), img.recSrgb, copt, &mask,
                                        "band-limited reference", "view");
-  if (depth.present) r.depthBins = errorVsDepth(img.refExposed, img.recExposed, depth.z, depth.coverage, &mask, {}, &de);
+  if (depth.present) r.depthBins = errorVsDepth(img.refExposed, img.recExposed, depth, &mask, {}, &de);
   writeImage(errorMap(de, img, mask), out(sibling(s.camera.out, "_error.png")));
 
   Json m = metricsJson(r.metrics);

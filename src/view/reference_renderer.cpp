@@ -1,5 +1,6 @@
 #include "view/reference_renderer.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "camera/chromatic_spread.h"
@@ -91,8 +92,9 @@ class CameraRgbFilm final : public Film {
   uint64_t width_;
 };
 
-// Another film's channels, then A (the fraction of the rays that hit) and Z (the mean display
-// z of the hits): the hit is found in the field frame, where FieldSample::depth is measured.
+// Another film's channels, then A (the fraction of the rays that hit), Z (the mean display z of
+// the hits) and dZ (their max - min): the hit is found in the field frame, where
+// FieldSample::depth is measured.
 class WithSurfaceDepth final : public Film {
  public:
   WithSurfaceDepth(const Film& colour, const Transform& fieldToDisplay)
@@ -101,13 +103,14 @@ class WithSurfaceDepth final : public Film {
     std::vector<std::string> c = colour_.channels();
     c.push_back("A");
     c.push_back("Z");
+    c.push_back("dZ");
     return c;
   }
 
   void resolvePixel(const PixelRays& p, float* pixel) const override {
     colour_.resolvePixel(p, pixel);
     size_t hits = 0, depths = 0;
-    double zSum = 0.0;
+    double zSum = 0.0, zMin = 0.0, zMax = 0.0;
     for (size_t i = 0; i < p.answers.size(); ++i) {
       const FieldSample& f = p.answers[i];
       if (!(f.opacity > 0.0f)) continue;
@@ -115,12 +118,15 @@ class WithSurfaceDepth final : public Film {
       if (!std::isfinite(f.depth)) continue;
       const FieldRay& r = p.rays[i];
       const Point3d hit = Point3d(r.o) + double(f.depth) * Vec3d(r.d);
-      zSum += fieldToDisplay_.point(hit).z;
+      const double z = fieldToDisplay_.point(hit).z;
+      zMin = depths ? std::min(zMin, z) : z, zMax = depths ? std::max(zMax, z) : z;
+      zSum += z;
       ++depths;
     }
     const size_t rays = p.answers.size();
     pixel[colourChannels_] = rays ? float(double(hits) / double(rays)) : 0.0f;
     pixel[colourChannels_ + 1] = depths ? float(zSum / double(depths)) : 0.0f;
+    pixel[colourChannels_ + 2] = float(zMax - zMin);
   }
 
  private:

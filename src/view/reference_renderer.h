@@ -28,7 +28,7 @@
 // percentile to 0.9: brightness is comparable, absolute scales are not, since the scene's
 // radiance units and the panel's cd/m^2 differ).
 //
-// Depth (ReferenceSettings::depth): two more channels after R, G, B, for asking where in depth
+// Depth (ReferenceSettings::depth): three more channels after R, G, B, for asking where in depth
 // a reconstruction goes wrong (analysis/depth_error.h):
 //   A  the fraction of the pixel's camera rays that hit a surface (FieldSample::opacity > 0);
 //      rays the camera vignetted entirely are not counted, so a covered pixel has A = 1;
@@ -36,6 +36,8 @@
 //      over the rays that hit with a finite depth; 0 where none did. A hit is found in the
 //      field frame (the ray's origin + FieldSample::depth along it, field units) and placed
 //      with `fieldToDisplay`, so any scale of the placement is accounted for.
+//   dZ the max - min of those z (0 with fewer than two): large where the pixel straddles an
+//      edge between surfaces at different depths, so that Z lies where neither is.
 // R, G, B are the same, bit for bit, with depth on or off.
 //
 //   ReferenceSettings s;
@@ -68,7 +70,7 @@ struct ReferenceSettings {
   uint64_t seed = 1;
   bool progress = true;
   int raysPerBatch = 4096;
-  bool depth = false;  // add channels A and Z (see above)
+  bool depth = false;  // add channels A, Z and dZ (see above)
   // Pixels a comparison does not read (0 in this width x height map) get sppElsewhere samples,
   // the first of the same pixel's full set (0: none, black); see render/field_renderer.h.
   const std::vector<uint8_t>* fullSamples = nullptr;

@@ -52,7 +52,7 @@ DepthBinning fixedBins() {
 TEST(DepthError, RelativeRmseIsTheKnownErrorOfEachDepth) {
   const double k = 0.01;
   const Synthetic s = linearError(30, k);
-  const std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, s.z, s.a, nullptr, fixedBins());
+  const std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, fixedBins());
   ASSERT_EQ(bins.size(), 24u);
   for (int i = 0; i < 24; ++i) {
     const DepthBin& b = bins[size_t(i)];
@@ -73,7 +73,7 @@ TEST(DepthError, MeanDeltaEIsThePerPixelMapsMeanOverTheBin) {
   const Synthetic s = linearError(24, 0.0);
   std::vector<float> de(s.z.size());
   for (size_t i = 0; i < de.size(); ++i) de[i] = std::abs(s.z[i]) + float((i / 24) % 3);  // row y: |z| + y mod 3
-  const std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, s.z, s.a, nullptr, fixedBins(), &de);
+  const std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, fixedBins(), &de);
   for (const DepthBin& b : bins) {
     EXPECT_NEAR(b.de2000Mean, std::abs(b.zCentre) + 1.0, 1e-4) << b.zCentre;  // 24 rows: 8 each of 0, 1, 2
     EXPECT_EQ(b.relRmse, 0.0);
@@ -92,10 +92,10 @@ TEST(DepthError, MaskedOutAndPartlyCoveredPixelsDoNotCount) {
       if (y < 5) mask.on[i] = 0;
       else s.a[i] = 0.49f;
     }
-  const std::vector<DepthBin> got = errorVsDepth(s.ref, s.rec, s.z, s.a, &mask, fixedBins());
+  const std::vector<DepthBin> got = errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, &mask, fixedBins());
   // The same as the 20 clean rows alone.
   Synthetic rest = linearError(20, 0.01);
-  const std::vector<DepthBin> want = errorVsDepth(rest.ref, rest.rec, rest.z, rest.a, nullptr, fixedBins());
+  const std::vector<DepthBin> want = errorVsDepth(rest.ref, rest.rec, {rest.z, rest.a, {}}, nullptr, fixedBins());
   ASSERT_EQ(got.size(), want.size());
   for (size_t i = 0; i < got.size(); ++i) {
     EXPECT_EQ(got[i].pixels, 20);
@@ -104,12 +104,41 @@ TEST(DepthError, MaskedOutAndPartlyCoveredPixelsDoNotCount) {
   // Coverage 0.5 counts: a surface, not a mix.
   for (float& a : s.a)
     if (a < 0.5f) a = 0.5f;
-  EXPECT_EQ(errorVsDepth(s.ref, s.rec, s.z, s.a, &mask, fixedBins())[0].pixels, 25);
+  EXPECT_EQ(errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, &mask, fixedBins())[0].pixels, 25);
+}
+
+// Pixels whose surfaces spread over more than a bin's width (an edge between a near and a far
+// surface) are counted in the bin of their mean z but left out of its metrics, however wrong
+// they are; up to the bin's width they count.
+TEST(DepthError, MixedPixelsAreCountedButLeftOutOfTheMetrics) {
+  const double k = 0.01;
+  Synthetic s = linearError(30, k);
+  std::vector<float> spread(s.z.size(), 0.0f);
+  for (int y = 0; y < 10; ++y)  // 10 rows: an edge, and far off in colour
+    for (int x = 0; x < 24; ++x) {
+      const size_t i = size_t(y) * 24 + size_t(x);
+      spread[i] = y < 5 ? 2.001f : 2.0f;  // beyond the 2 mm bins, or just within
+      if (y < 5)
+        for (int c = 0; c < 3; ++c) s.rec.at(x, y, c) = 10.0f;
+    }
+  const std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, {s.z, s.a, spread}, nullptr, fixedBins());
+  for (int i = 0; i < 24; ++i) {
+    const DepthBin& b = bins[size_t(i)];
+    EXPECT_EQ(b.pixels, 25);
+    EXPECT_EQ(b.mixedPixels, 5);
+    EXPECT_NEAR(b.relRmse, k * std::abs(b.zCentre), 1e-6) << "bin " << i;
+  }
+  DepthBinning all = fixedBins();
+  all.leaveOutMixed = false;
+  const std::vector<DepthBin> kept = errorVsDepth(s.ref, s.rec, {s.z, s.a, spread}, nullptr, all);
+  EXPECT_EQ(kept[3].pixels, 30);
+  EXPECT_EQ(kept[3].mixedPixels, 0);
+  EXPECT_GT(kept[3].relRmse, 1.0);
 }
 
 TEST(DepthError, SparseBinsKeepTheirCountWithoutMetrics) {
   const Synthetic s = linearError(19, 0.01);  // 19 pixels per bin: one short of the minimum
-  const std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, s.z, s.a, nullptr, fixedBins());
+  const std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, fixedBins());
   for (const DepthBin& b : bins) {
     EXPECT_EQ(b.pixels, 19);
     EXPECT_TRUE(std::isnan(b.relRmse));
@@ -117,7 +146,7 @@ TEST(DepthError, SparseBinsKeepTheirCountWithoutMetrics) {
   }
   DepthBinning fewer = fixedBins();
   fewer.minPixels = 19;
-  EXPECT_TRUE(std::isfinite(errorVsDepth(s.ref, s.rec, s.z, s.a, nullptr, fewer)[3].relRmse));
+  EXPECT_TRUE(std::isfinite(errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, fewer)[3].relRmse));
 }
 
 TEST(DepthError, DefaultRangeIsTheFirstToNinetyNinthPercentile) {
@@ -127,7 +156,7 @@ TEST(DepthError, DefaultRangeIsTheFirstToNinetyNinthPercentile) {
   std::fill(img.data.begin(), img.data.end(), 0.5f);
   std::vector<float> z(1000), a(1000, 1.0f);
   for (int i = 0; i < 1000; ++i) z[size_t(i)] = float(0.1 * i);
-  const std::vector<DepthBin> bins = errorVsDepth(img, img, z, a, nullptr, {});
+  const std::vector<DepthBin> bins = errorVsDepth(img, img, {z, a, {}}, nullptr, {});
   ASSERT_EQ(bins.size(), 24u);  // the default count
   EXPECT_NEAR(bins.front().zLo, 0.999, 1e-5);
   EXPECT_NEAR(bins.back().zHi, 98.901, 1e-5);
@@ -141,7 +170,7 @@ TEST(DepthError, AFlatSceneIsOneBinAboutItsDepth) {
   Image img(10, 10, {"R", "G", "B"});
   std::fill(img.data.begin(), img.data.end(), 0.5f);
   const std::vector<float> z(100, 5.0f), a(100, 1.0f);
-  const std::vector<DepthBin> bins = errorVsDepth(img, img, z, a, nullptr, {});
+  const std::vector<DepthBin> bins = errorVsDepth(img, img, {z, a, {}}, nullptr, {});
   ASSERT_EQ(bins.size(), 24u);
   EXPECT_NEAR(bins.front().zLo, 4.5, 1e-9);
   EXPECT_NEAR(bins.back().zHi, 5.5, 1e-9);
@@ -156,25 +185,27 @@ TEST(DepthError, AFlatSceneIsOneBinAboutItsDepth) {
     }
   EXPECT_EQ(full, 1);
   // No pixel counts: no bins.
-  EXPECT_TRUE(errorVsDepth(img, img, z, std::vector<float>(100, 0.0f), nullptr, {}).empty());
+  EXPECT_TRUE(errorVsDepth(img, img, {z, std::vector<float>(100, 0.0f), {}}, nullptr, {}).empty());
 }
 
 TEST(DepthError, BadInputsAreNamed) {
   const Synthetic s = linearError(4, 0.0);
   std::vector<float> shortZ(s.z.begin(), s.z.end() - 1);
-  EXPECT_EQ(expectInputError([&] { (void)errorVsDepth(s.ref, s.rec, shortZ, s.a, nullptr); }).key(), "depth");
-  EXPECT_EQ(expectInputError([&] { (void)errorVsDepth(s.ref, s.rec, s.z, shortZ, nullptr); }).key(), "coverage");
+  EXPECT_EQ(expectInputError([&] { (void)errorVsDepth(s.ref, s.rec, {shortZ, s.a, {}}, nullptr); }).key(), "depth");
+  EXPECT_EQ(expectInputError([&] { (void)errorVsDepth(s.ref, s.rec, {s.z, shortZ, {}}, nullptr); }).key(), "coverage");
+  EXPECT_EQ(expectInputError([&] { (void)errorVsDepth(s.ref, s.rec, {s.z, s.a, shortZ}, nullptr); }).key(),
+            "depth_spread");
   DepthBinning b;
   b.count = 0;
-  EXPECT_EQ(expectInputError([&] { (void)errorVsDepth(s.ref, s.rec, s.z, s.a, nullptr, b); }).key(), "depth_bins");
+  EXPECT_EQ(expectInputError([&] { (void)errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, b); }).key(), "depth_bins");
   b = fixedBins();
   b.maxZ = b.minZ;
-  EXPECT_EQ(expectInputError([&] { (void)errorVsDepth(s.ref, s.rec, s.z, s.a, nullptr, b); }).key(), "depth_range");
+  EXPECT_EQ(expectInputError([&] { (void)errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, b); }).key(), "depth_range");
 }
 
 TEST(DepthError, JsonAndCsvCarryEveryBinWithNaNAsNull) {
   const Synthetic s = linearError(19, 0.01);
-  std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, s.z, s.a, nullptr, fixedBins());
+  std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, fixedBins());
   bins[1].relRmse = 0.25, bins[1].de2000Mean = 3.0;
   const Json j = depthBinsJson(bins);
   ASSERT_EQ(j.size(), 24u);
@@ -187,12 +218,15 @@ TEST(DepthError, JsonAndCsvCarryEveryBinWithNaNAsNull) {
   const auto rows = depthBinsCsvRows(bins);
   ASSERT_EQ(rows.size(), 24u);
   EXPECT_EQ(rows[0].size(), depthBinsCsvHeader().size());
-  EXPECT_EQ(rows[0][4], "nan");
+  EXPECT_EQ(rows[0][4], "0");  // mixed pixels
+  EXPECT_EQ(rows[0][5], "nan");
+  bins[2].mixedPixels = 7;
+  EXPECT_EQ(depthBinsJson(bins)[2]["mixed_pixels"].get<int64_t>(), 7);
 }
 
 TEST(DepthErrorPlot, MarksTheMlaPlaneLAndTheDepthOfFieldBand) {
   const Synthetic s = linearError(30, 0.01);
-  const std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, s.z, s.a, nullptr, fixedBins());
+  const std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, fixedBins());
   DepthMarks m;
   m.referencePlaneMm = 30.0;  // beyond the bins: the range grows to show it
   m.referencePlaneLabel = "L = 30 mm";

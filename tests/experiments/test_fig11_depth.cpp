@@ -90,6 +90,7 @@ TEST(Fig11Depth, TakingTheDepthChannelsOffLeavesTheColourAsItWas) {
       for (int c = 0; c < 3; ++c) ASSERT_EQ(withDepth.at(x, y, c), original.at(x, y, c));
       ASSERT_EQ(d.coverage[i], original.at(x, y, 3));
       ASSERT_EQ(d.z[i], original.at(x, y, 4));
+      ASSERT_EQ(d.spread[i], original.at(x, y, 5));
     }
   // An image without depth is left alone.
   Image rgb = withDepth;
@@ -144,14 +145,14 @@ TEST(Fig11Depth, SmallRunWritesBinsFigureAndMetrics) {
     const std::string p(pose);
     EXPECT_TRUE(fs::exists(out / ("depth_error_" + p + ".csv")));
     const Image depth = readImage((out / ("reference_" + p + "_depth.exr")).string());
-    EXPECT_EQ(depth.channels, (std::vector<std::string>{"A", "Z"}));
+    EXPECT_EQ(depth.channels, (std::vector<std::string>{"A", "Z", "dZ"}));
     EXPECT_EQ(readImage((out / ("reference_" + p + ".exr")).string()).numChannels(), 3);
     const Json& bins = m.at(p).at("depth_error");
     ASSERT_EQ(bins.size(), 24u);
     int64_t counted = 0;
     for (const Json& b : bins) {
       EXPECT_LT(b.at("z_lo").get<double>(), b.at("z_hi").get<double>());
-      counted += b.at("pixels").get<int64_t>();
+      counted += b.at("pixels").get<int64_t>() + b.at("mixed_pixels").get<int64_t>();
     }
     EXPECT_GT(counted, 0);
     EXPECT_LE(counted, m.at(p).at("pixels").get<int64_t>());

@@ -257,7 +257,7 @@ TEST(ReferenceRenderer, VignettedLensSamplesAddNoGrain) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Depth (ReferenceSettings::depth): channels A and Z.
+// Depth (ReferenceSettings::depth): channels A, Z and dZ.
 
 namespace {
 
@@ -331,7 +331,7 @@ TEST(ReferenceDepth, FlatPlaneHeadOnGivesItsDisplayZ) {
   s.progress = false;
   s.depth = true;
   const Image img = renderReference(plane, Transform(), *cam, defaultCamera().sensor, s).image;
-  ASSERT_EQ(img.channels, (std::vector<std::string>{"R", "G", "B", "A", "Z"}));
+  ASSERT_EQ(img.channels, (std::vector<std::string>{"R", "G", "B", "A", "Z", "dZ"}));
   const DepthCheck c = checkDepth(img, 5.0);
   std::printf("[ measured ] plane z = 5: %d covered, %d mixed, %d empty pixels, max |Z - 5| = %.2e mm\n", c.covered,
               c.mixed, c.empty, c.maxZError);
@@ -340,6 +340,55 @@ TEST(ReferenceDepth, FlatPlaneHeadOnGivesItsDisplayZ) {
   EXPECT_GT(c.mixed, 0);  // the square's edges
   EXPECT_LE(c.maxZError, 1e-3);
   EXPECT_TRUE(c.emptyHaveZeroZ);
+}
+
+// A near square in front of a larger far one: dZ is 0 on either square alone and the two
+// squares' distance on the pixels whose rays hit both, where Z lies between them.
+TEST(ReferenceDepth, SpreadIsTheDistanceOfTheSurfacesAPixelStraddles) {
+  PlaneField nearSquare(5.0, 4.0), farSquare(-15.0, 12.0);
+  struct Both final : Field {
+    const PlaneField &a, &b;
+    Both(const PlaneField& a, const PlaneField& b) : a(a), b(b) {}
+    FieldEncoding encoding() const override { return FieldEncoding::Spectral; }
+    void query(std::span<const FieldRay> rays, std::span<const SampledWavelengths> l, std::span<FieldSample> out,
+               uint64_t seed) const override {
+      std::vector<FieldSample> far(out.size());
+      a.query(rays, l, out, seed);
+      b.query(rays, l, far, seed);
+      for (size_t i = 0; i < out.size(); ++i)
+        if (!(out[i].opacity > 0.0f)) out[i] = far[i];
+    }
+    void bounds(Point3& lo, Point3& hi) const override { b.bounds(lo, hi), hi.z = 5.0f; }
+  } both(nearSquare, farSquare);
+  auto cam = pinholeCamera(DisplayPose{0.0, 0.0, 200.0}.cameraPose(), 64, 48, 0.05, 20.0);
+  ReferenceSettings s;
+  s.spp = 8;
+  s.progress = false;
+  s.depth = true;
+  const Image img = renderReference(both, Transform(), *cam, defaultCamera().sensor, s).image;
+  const int a = img.channelIndex("A"), z = img.channelIndex("Z"), dz = img.channelIndex("dZ");
+  ASSERT_EQ(dz, 5);
+  int onNear = 0, onFar = 0, straddling = 0;
+  double worstFlat = 0.0, worstEdge = 0.0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      if (img.at(x, y, a) < 1.0f) continue;  // the far square's outer edge
+      const double Z = img.at(x, y, z), D = img.at(x, y, dz);
+      if (std::abs(Z - 5.0) < 1e-3 || std::abs(Z + 15.0) < 1e-3) {
+        ++(Z > 0.0 ? onNear : onFar);
+        worstFlat = std::max(worstFlat, D);
+      } else {
+        ++straddling;
+        worstEdge = std::max(worstEdge, std::abs(D - 20.0));
+      }
+    }
+  std::printf("[ measured ] %d near, %d far, %d straddling pixels; dZ alone <= %.1e, straddling |dZ - 20| <= %.1e mm\n",
+              onNear, onFar, straddling, worstFlat, worstEdge);
+  EXPECT_GT(onNear, 200);
+  EXPECT_GT(onFar, 200);
+  EXPECT_GT(straddling, 20);  // the near square's edges
+  EXPECT_LE(worstFlat, 1e-3);
+  EXPECT_LE(worstEdge, 1e-3);
 }
 
 TEST(ReferenceDepth, PlacementScaleIsAppliedToTheHit) {
@@ -374,7 +423,7 @@ TEST(ReferenceDepth, ColourIsBitIdenticalWithDepthOnOrOff) {
     s.depth = true;
     const ViewResult on = renderReference(f, place, m, defaultCamera().sensor, s);
     ASSERT_EQ(off.image.numChannels(), 3);
-    ASSERT_EQ(on.image.numChannels(), 5);
+    ASSERT_EQ(on.image.numChannels(), 6);
     int differing = 0, hitPixels = 0;
     for (int y = 0; y < on.image.height; ++y)
       for (int x = 0; x < on.image.width; ++x) {
