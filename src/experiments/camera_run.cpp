@@ -12,6 +12,7 @@
 #include "core/output_file.h"
 #include "display/display.h"
 #include "fields/field_factory.h"
+#include "view/estimators/quadrature_tables.h"
 #include "view/view_camera.h"
 
 namespace inim {
@@ -128,7 +129,10 @@ ViewRunResult renderViewRun(const ViewRunSettings& s, const std::function<void(c
   std::vector<const PanelEmitter*> panels{dm.panel.get()};
   if (carried)
     for (const PanelEmitter* p : carried(r, dm)) panels.push_back(p);
-  std::vector<ViewResult> views = renderViews(*r.camera.camera, r.camera.desc.sensor, *dm.mla, panels, dm.area, s.view);
+  ViewSettings view = s.view;
+  if (!view.tableCache) view.tableCache = std::make_shared<QuadratureTableCache>(*r.camera.camera);
+  r.tables = view.tableCache;
+  std::vector<ViewResult> views = renderViews(*r.camera.camera, r.camera.desc.sensor, *dm.mla, panels, dm.area, view);
   r.render = std::move(views[0]);
   for (size_t k = 1; k < views.size(); ++k) r.carriedViews.push_back(std::move(views[k].image));
   return r;

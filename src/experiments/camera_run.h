@@ -68,6 +68,9 @@ struct ViewRunResult {
   double loadSeconds = 0.0;
   ViewResult render;
   std::vector<Image> carriedViews;  // of the panels CarriedPanels gave, rendered in the view's pass
+  // The aperture tables the render made (ViewSettings::tableCache; the given cache, else one of
+  // its own): later renders through the same camera reuse them.
+  std::shared_ptr<QuadratureTableCache> tables;
   double exposureFactor = 1.0;
 };
 

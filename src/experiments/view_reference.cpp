@@ -188,7 +188,7 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
     for (size_t k = 0; k < carried.size(); ++k)
       made.push_back({carried[k].rung, &r.view.carriedViews[k], "rendered in one pass with the view"});
     PoseBudget b = poseBudget(scene, *cs.camera, img.refExposed, secondExposed, img.exposure, mask, in.rungs, made,
-                              &limited);
+                              &limited, r.view.tables);
     b.pose = "view";
     Json bj = Json::object();
     bj["view"] = poseBudgetJson(b);
