@@ -59,6 +59,14 @@ void expectLegendClearOfData(const Plot& p) {
   EXPECT_GT(darkIn(with, f.legend.x0 + 2, f.legend.y0 + 2, f.legend.x1 - 2, f.legend.y1 - 2, 0.3f), 20);
 }
 
+// A dense zigzag over the whole plot area of basePlot: no free place inside.
+PlotSeries denseZigzag() {
+  PlotSeries z{"zigzag", {}, {}};
+  for (int i = 0; i <= 120; ++i) z.x.push_back(i / 12.0), z.y.push_back(i % 2 ? 10.0 : 0.0);
+  z.markers = false;
+  return z;
+}
+
 }  // namespace
 
 TEST(PlotLegend, TopRightWhenFree) {
@@ -102,12 +110,8 @@ TEST(PlotLegend, MovesToTheCornerTheDataLeaves) {
 }
 
 TEST(PlotLegend, OutsideWhenNoRoomInside) {
-  // A dense zigzag over the whole plot area: no free place inside.
   Plot p = basePlot();
-  PlotSeries z{"zigzag", {}, {}};
-  for (int i = 0; i <= 120; ++i) z.x.push_back(i / 12.0), z.y.push_back(i % 2 ? 10.0 : 0.0);
-  z.markers = false;
-  p.series.push_back(z);
+  p.series.push_back(denseZigzag());
   p.series.push_back(curve("line", [](double x) { return x; }));
   const PlotFrame f = plotFrame(p);
   ASSERT_TRUE(f.legendOutside);
@@ -129,10 +133,7 @@ TEST(PlotLegend, OutsideWhenNoRoomInside) {
 // legend still sits right of the area, clear of it.
 TEST(PlotLegend, StackedPanelsLineUpWhenTheLegendGoesOutside) {
   Plot top = basePlot();
-  PlotSeries z{"zigzag", {}, {}};
-  for (int i = 0; i <= 120; ++i) z.x.push_back(i / 12.0), z.y.push_back(i % 2 ? 10.0 : 0.0);
-  z.markers = false;
-  top.series.push_back(z);
+  top.series.push_back(denseZigzag());
   Plot bottom = basePlot();
   bottom.legend = false;
   bottom.y.max = 123450.0;  // wide tick labels
