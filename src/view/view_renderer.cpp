@@ -100,11 +100,10 @@ PixelMask displayMask(const CameraModel& camera, const AreaMm& area) {
 namespace {
 
 // One pass of the tile loop: the estimator's context panel into results[0], its companions into
-// the others.
+// the others. The settings are validated by the caller, before the contexts are made.
 std::vector<ViewResult> renderPass(const CameraModel& camera, const EstimatorContext& context,
                                    const std::vector<const EstimatorContext*>& companions,
                                    const ViewSettings& settings) {
-  validate(settings);
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<PixelEstimator> estimator =
       companions.empty() ? makePanelEstimator(settings.panelEstimator, context)
