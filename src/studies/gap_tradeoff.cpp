@@ -158,8 +158,8 @@ Plot depthPlot(const std::vector<GapRun>& runs, const std::string& sceneName, bo
     const GapRun& r = runs[i];
     PlotSeries s{"g = " + fixed(r.gapMm, 2) + " mm", {}, {}};
     s.color = plotPalette(int(i));
-    for (const DepthBin& b : bandLimited ? r.binsBandLimited : r.bins)
-      if (std::isfinite(b.de2000Mean)) s.x.push_back(b.zCentre), s.y.push_back(b.de2000Mean);
+    for (const DepthBin& b : bandLimited ? r.binsBandLimited : r.bins)  // NaN (too few pixels) breaks the line
+      s.x.push_back(b.zCentre), s.y.push_back(b.de2000Mean);
     p.series.push_back(s);
     if (r.lMm && std::abs(*r.lMm) < 80.0) p.markers.push_back({*r.lMm, "", plotPalette(int(i)), 5.0});
   }
