@@ -265,8 +265,16 @@ TEST(DepthErrorPlot, MarksTheMlaPlaneLAndTheDepthOfFieldBand) {
   const Plot bare = depthErrorPlot({{"0°", bins}}, DepthMarks{}, DepthErrorQuantity::RelativeRmse);
   EXPECT_EQ(bare.markers.size(), 1u);
   EXPECT_TRUE(bare.polygons.empty());
-  // The figure: both plots, one above the other.
+  // The figure: both plots, one above the other. Here the legend has to go outside the upper
+  // one (the marks fill its corners): the figure widens by the legend (and a font size' gap)
+  // rather than the plots narrowing; without marks the legend fits inside and the figure is as
+  // wide as a plot.
+  const Plot upper = depthErrorPlot({{"0°", bins}}, m, DepthErrorQuantity::RelativeRmse);
+  const PlotFrame uf = plotFrame(upper);
+  ASSERT_TRUE(uf.legendOutside);
   const Image fig = depthErrorFigure({{"0°", bins}}, m);
-  EXPECT_EQ(fig.width, bare.width);
+  EXPECT_EQ(fig.width, bare.width + int(std::ceil(uf.legend.x1 - uf.legend.x0 + upper.fontSize)));
   EXPECT_EQ(fig.height, 2 * bare.height);
+  ASSERT_FALSE(plotFrame(bare).legendOutside);
+  EXPECT_EQ(depthErrorFigure({{"0°", bins}}, DepthMarks{}).width, bare.width);
 }
