@@ -67,7 +67,18 @@ std::pair<double, double> depthRange(const std::vector<size_t>& pixels, const st
 struct BinSums {
   int64_t pixels = 0, mixed = 0;
   double diff2 = 0.0, ref2 = 0.0, de = 0.0;
+  double ref[3] = {0.0, 0.0, 0.0};  // per channel, for the mean colour
 };
+
+// sqrt(mean |ref - mean ref|^2) = sqrt(mean |ref|^2 - |mean ref|^2); NaN when that is lost in
+// rounding (a flat bin: no detail to measure the error against).
+double detailRms(const BinSums& s) {
+  const double n = double(s.pixels), meanSq = s.ref2 / n;
+  double meanColourSq = 0.0;
+  for (double c : s.ref) meanColourSq += (c / n) * (c / n);
+  const double var = meanSq - meanColourSq;
+  return var > 1e-9 * meanSq ? std::sqrt(var) : kNaN;
+}
 
 }  // namespace
 
@@ -97,6 +108,7 @@ std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstr
       const double r = ref[3 * i + size_t(c)], d = double(rec[3 * i + size_t(c)]) - r;
       s.diff2 += d * d;
       s.ref2 += r * r;
+      s.ref[c] += r;
     }
     s.de += de[i];
   }
@@ -113,6 +125,7 @@ std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstr
     const bool enough = s.pixels >= std::max<int64_t>(1, b.minPixels);
     o.relRmse = enough && s.ref2 > 0.0 ? std::sqrt(s.diff2 / s.ref2) : kNaN;  // the means' 1/n cancels
     o.de2000Mean = enough ? s.de / double(s.pixels) : kNaN;
+    o.errorOverDetail = enough ? std::sqrt(s.diff2 / double(s.pixels)) / detailRms(s) : kNaN;
   }
   return bins;
 }
@@ -126,19 +139,21 @@ Json depthBinsJson(const std::vector<DepthBin>& bins) {
                  {"pixels", b.pixels},
                  {"mixed_pixels", b.mixedPixels},
                  {"rel_rmse", num(b.relRmse)},
-                 {"de2000_mean", num(b.de2000Mean)}});
+                 {"de2000_mean", num(b.de2000Mean)},
+                 {"error_over_detail", num(b.errorOverDetail)}});
   return a;
 }
 
 std::vector<std::string> depthBinsCsvHeader() {
-  return {"z_lo_mm", "z_hi_mm", "z_centre_mm", "pixels", "mixed_pixels", "rel_rmse", "de2000_mean"};
+  return {"z_lo_mm", "z_hi_mm", "z_centre_mm", "pixels", "mixed_pixels", "rel_rmse", "de2000_mean", "error_over_detail"};
 }
 
 std::vector<std::vector<std::string>> depthBinsCsvRows(const std::vector<DepthBin>& bins) {
   std::vector<std::vector<std::string>> rows;
   for (const DepthBin& b : bins)
     rows.push_back({csvNumber(b.zLo), csvNumber(b.zHi), csvNumber(b.zCentre), std::to_string(b.pixels),
-                    std::to_string(b.mixedPixels), csvNumber(b.relRmse), csvNumber(b.de2000Mean)});
+                    std::to_string(b.mixedPixels), csvNumber(b.relRmse), csvNumber(b.de2000Mean),
+                    csvNumber(b.errorOverDetail)});
   return rows;
 }
 

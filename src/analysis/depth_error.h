@@ -11,6 +11,11 @@
 // equal slices of z; per bin:
 //   relative RMSE  sqrt(mean |rec - ref|^2) / sqrt(mean |ref|^2), |.| over R, G, B, on the
 //                  images as given (fig11: linear camera RGB, exposed alike);
+//   error / detail sqrt(mean |rec - ref|^2) / sqrt(mean |ref - mean ref|^2): the error against
+//                  the detail there is to show in the bin (the reference's RMS about the bin's
+//                  mean colour). It compares depths that hold different content: a blurred
+//                  smooth backdrop has a small relative RMSE but the same error / detail as a
+//                  blurred texture. 1 = as far off as the bin's mean colour painted flat;
 //   mean CIEDE2000 of a per-pixel map (deltaE2000Map of the encoded images, as compareImages
 //                  uses; without one, of the two images taken as linear Rec.709).
 // A bin with fewer than `minPixels` pixels keeps its count but has NaN metrics (too few to say).
@@ -55,6 +60,7 @@ struct DepthBin {
   int64_t pixels = 0;       // the pixels its metrics are over
   int64_t mixedPixels = 0;  // left out: their surfaces spread over more than the bin's width
   double relRmse = 0.0;     // NaN when pixels < minPixels or the reference is black there
+  double errorOverDetail = 0.0;  // NaN when pixels < minPixels or the reference is flat there
   double de2000Mean = 0.0;  // NaN when pixels < minPixels
 };
 
@@ -65,10 +71,11 @@ std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstr
                                    const PixelMask* mask, const DepthBinning& b = {},
                                    const std::vector<float>* deltaE = nullptr);
 
-// [{z_lo, z_hi, pixels, mixed_pixels, rel_rmse, de2000_mean}, ...]; NaN metrics as null.
+// [{z_lo, z_hi, pixels, mixed_pixels, rel_rmse, de2000_mean, error_over_detail}, ...]; NaN
+// metrics as null.
 Json depthBinsJson(const std::vector<DepthBin>& bins);
-// CSV: z_lo_mm, z_hi_mm, z_centre_mm, pixels, mixed_pixels, rel_rmse, de2000_mean ("nan" where
-// NaN).
+// CSV: z_lo_mm, z_hi_mm, z_centre_mm, pixels, mixed_pixels, rel_rmse, de2000_mean,
+// error_over_detail ("nan" where NaN).
 std::vector<std::string> depthBinsCsvHeader();
 std::vector<std::vector<std::string>> depthBinsCsvRows(const std::vector<DepthBin>& bins);
 
@@ -93,14 +100,14 @@ struct DepthMarks {
   std::string samplingRangeLabel = "depth range";
 };
 
-enum class DepthErrorQuantity { RelativeRmse, DeltaE2000 };
+enum class DepthErrorQuantity { RelativeRmse, ErrorOverDetail, DeltaE2000 };
 
 // One quantity against z (bin centres; NaN bins break the lines), a curve per entry. The x range
 // holds every bin and the marked planes; the band is clipped to it. The y axis starts at 0, or
 // is logarithmic when the values spread over more than a decade.
 Plot depthErrorPlot(const std::vector<DepthErrorCurve>& curves, const DepthMarks& marks, DepthErrorQuantity q);
-// Relative RMSE above (with the legend), mean CIEDE2000 below, on the same z range with their
-// plot areas lined up (alignPlotAreas): one image (PNG-ready sRGB).
+// Relative RMSE (with the legend), error / detail and mean CIEDE2000, stacked, on the same z range
+// with their plot areas lined up (alignPlotAreas): one image (PNG-ready sRGB).
 Image depthErrorFigure(const std::vector<DepthErrorCurve>& curves, const DepthMarks& marks,
                        const std::string& title = "Error against depth");
 

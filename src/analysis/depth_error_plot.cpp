@@ -1,6 +1,7 @@
 // The figure of analysis/depth_error.h: error against depth with the MLA plane, L and the
 // depth-of-field band marked.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -11,7 +12,25 @@ namespace inim {
 namespace {
 
 double binValue(const DepthBin& b, DepthErrorQuantity q) {
-  return q == DepthErrorQuantity::RelativeRmse ? b.relRmse : b.de2000Mean;
+  switch (q) {
+    case DepthErrorQuantity::RelativeRmse: return b.relRmse;
+    case DepthErrorQuantity::ErrorOverDetail: return b.errorOverDetail;
+    case DepthErrorQuantity::DeltaE2000: return b.de2000Mean;
+  }
+  return 0.0;
+}
+
+struct QuantityText {
+  const char* name;  // for a title
+  const char* axis;
+};
+QuantityText quantityText(DepthErrorQuantity q) {
+  switch (q) {
+    case DepthErrorQuantity::RelativeRmse: return {"relative RMSE", "relative RMSE (linear RGB)"};
+    case DepthErrorQuantity::ErrorOverDetail: return {"error / detail", "RMSE / detail (1: flat mean colour)"};
+    case DepthErrorQuantity::DeltaE2000: return {"mean CIEDE2000", "mean ΔE2000"};
+  }
+  return {"", ""};
 }
 
 // The x range: every bin and the marked planes, a little padding on both sides.
@@ -75,10 +94,11 @@ Plot depthErrorPlot(const std::vector<DepthErrorCurve>& curves, const DepthMarks
   Plot p;
   p.width = 900;
   p.height = 420;
-  const bool rmse = q == DepthErrorQuantity::RelativeRmse;
-  p.title = rmse ? "Relative RMSE against depth" : "Mean CIEDE2000 against depth";
+  const QuantityText text = quantityText(q);
+  p.title = std::string(text.name) + " against depth";
+  p.title[0] = char(std::toupper(static_cast<unsigned char>(p.title[0])));
   p.x.title = "scene depth z (mm, display frame; > 0 toward the viewer)";
-  p.y.title = rmse ? "relative RMSE (linear RGB)" : "mean ΔE2000";
+  p.y.title = text.axis;
   const auto [zLo, zHi] = zRange(curves, marks);
   const YRange y = yRange(curves, q);
   p.x.min = zLo, p.x.max = zHi;
@@ -101,25 +121,34 @@ Plot depthErrorPlot(const std::vector<DepthErrorCurve>& curves, const DepthMarks
 }
 
 Image depthErrorFigure(const std::vector<DepthErrorCurve>& curves, const DepthMarks& marks, const std::string& title) {
-  Plot top = depthErrorPlot(curves, marks, DepthErrorQuantity::RelativeRmse);
-  Plot bottom = depthErrorPlot(curves, marks, DepthErrorQuantity::DeltaE2000);
-  top.title = title + ": relative RMSE";
-  bottom.title = title + ": mean CIEDE2000 (curves and marks as above)";
-  bottom.legend = false;
-  if (const PlotFrame f = plotFrame(top); f.legendOutside) {  // the figure widens for it, not the plots narrow
-    top.width += int(std::ceil(f.legend.x1 - f.legend.x0 + top.fontSize));
-    bottom.width = top.width;
+  std::vector<Plot> panels;
+  for (DepthErrorQuantity q :
+       {DepthErrorQuantity::RelativeRmse, DepthErrorQuantity::ErrorOverDetail, DepthErrorQuantity::DeltaE2000}) {
+    panels.push_back(depthErrorPlot(curves, marks, q));
+    panels.back().title = title + ": " + quantityText(q).name + (panels.size() > 1 ? " (curves and marks as above)" : "");
+    panels.back().legend = panels.size() == 1;
   }
-  alignPlotAreas({&top, &bottom});
-  const Image a = renderPlot(top), b = renderPlot(bottom);
-  Image out(std::max(a.width, b.width), a.height + b.height, {"R", "G", "B"});
+  if (const PlotFrame f = plotFrame(panels[0]); f.legendOutside)  // the figure widens for it, not the plots narrow
+    for (Plot& p : panels) p.width += int(std::ceil(f.legend.x1 - f.legend.x0 + p.fontSize));
+  std::vector<Plot*> aligned;
+  for (Plot& p : panels) aligned.push_back(&p);
+  alignPlotAreas(aligned);
+
+  std::vector<Image> images;
+  int width = 0, height = 0;
+  for (const Plot& p : panels) {
+    images.push_back(renderPlot(p));
+    width = std::max(width, images.back().width), height += images.back().height;
+  }
+  Image out(width, height, {"R", "G", "B"});
   std::fill(out.data.begin(), out.data.end(), 1.0f);
-  for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x)
-      for (int c = 0; c < 3; ++c) out.at(x, y, c) = a.at(x, y, c);
-  for (int y = 0; y < b.height; ++y)
-    for (int x = 0; x < b.width; ++x)
-      for (int c = 0; c < 3; ++c) out.at(x, a.height + y, c) = b.at(x, y, c);
+  int top = 0;
+  for (const Image& a : images) {
+    for (int y = 0; y < a.height; ++y)
+      for (int x = 0; x < a.width; ++x)
+        for (int c = 0; c < 3; ++c) out.at(x, top + y, c) = a.at(x, y, c);
+    top += a.height;
+  }
   return out;
 }
 

@@ -203,10 +203,45 @@ TEST(DepthError, BadInputsAreNamed) {
   EXPECT_EQ(expectInputError([&] { (void)errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, b); }).key(), "depth_range");
 }
 
+// Error / detail: the bin's mean colour painted flat is off by exactly the detail (1); a
+// reconstruction off by ref k z is off by |k z| |ref|_rms / detail, the detail computed here in
+// two passes; a bin of one colour has no detail to compare with (NaN) while its relative RMSE
+// stays finite.
+TEST(DepthError, ErrorOverDetailIsOneForTheBinsMeanColourPaintedFlat) {
+  const int rows = 35;
+  Synthetic s = linearError(rows, 0.01);
+  double mean[3] = {0, 0, 0};
+  for (int y = 0; y < rows; ++y)
+    for (int c = 0; c < 3; ++c) mean[c] += s.ref.at(0, y, c) / double(rows);  // every column alike
+  double ref2 = 0.0, detail2 = 0.0;
+  for (int y = 0; y < rows; ++y)
+    for (int c = 0; c < 3; ++c) {
+      const double r = s.ref.at(0, y, c);
+      ref2 += r * r / rows, detail2 += (r - mean[c]) * (r - mean[c]) / rows;
+    }
+  const std::vector<DepthBin> linear = errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, fixedBins());
+  for (const DepthBin& b : linear)
+    EXPECT_NEAR(b.errorOverDetail, 0.01 * std::abs(b.zCentre) * std::sqrt(ref2 / detail2), 1e-5) << b.zCentre;
+
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < s.rec.width; ++x)
+      for (int c = 0; c < 3; ++c) s.rec.at(x, y, c) = float(mean[c]);
+  for (const DepthBin& b : errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, fixedBins()))
+    EXPECT_NEAR(b.errorOverDetail, 1.0, 1e-5) << b.zCentre;
+
+  Image flat = s.ref;
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < flat.width; ++x)
+      for (int c = 0; c < 3; ++c) flat.at(x, y, c) = 0.4f;
+  const DepthBin b = errorVsDepth(flat, s.rec, {s.z, s.a, {}}, nullptr, fixedBins())[3];
+  EXPECT_TRUE(std::isnan(b.errorOverDetail));
+  EXPECT_TRUE(std::isfinite(b.relRmse));
+}
+
 TEST(DepthError, JsonAndCsvCarryEveryBinWithNaNAsNull) {
   const Synthetic s = linearError(19, 0.01);
   std::vector<DepthBin> bins = errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, fixedBins());
-  bins[1].relRmse = 0.25, bins[1].de2000Mean = 3.0;
+  bins[1].relRmse = 0.25, bins[1].de2000Mean = 3.0, bins[1].errorOverDetail = 0.5;
   const Json j = depthBinsJson(bins);
   ASSERT_EQ(j.size(), 24u);
   EXPECT_TRUE(j[0]["rel_rmse"].is_null());
@@ -220,6 +255,9 @@ TEST(DepthError, JsonAndCsvCarryEveryBinWithNaNAsNull) {
   EXPECT_EQ(rows[0].size(), depthBinsCsvHeader().size());
   EXPECT_EQ(rows[0][4], "0");  // mixed pixels
   EXPECT_EQ(rows[0][5], "nan");
+  EXPECT_EQ(depthBinsCsvHeader().back(), "error_over_detail");
+  EXPECT_TRUE(j[0]["error_over_detail"].is_null());
+  EXPECT_EQ(j[1]["error_over_detail"].get<double>(), 0.5);
   bins[2].mixedPixels = 7;
   EXPECT_EQ(depthBinsJson(bins)[2]["mixed_pixels"].get<int64_t>(), 7);
 }
@@ -232,7 +270,8 @@ TEST(DepthErrorPlot, MarksTheMlaPlaneLAndTheDepthOfFieldBand) {
   m.referencePlaneLabel = "L = 30 mm";
   m.samplingRangeMm = 100.0;   // wider than the range: clipped to it
   m.depthOfFieldMm = std::pair{27.0, 33.0};  // around L, partly beyond the range: clipped to it
-  for (DepthErrorQuantity q : {DepthErrorQuantity::RelativeRmse, DepthErrorQuantity::DeltaE2000}) {
+  for (DepthErrorQuantity q :
+       {DepthErrorQuantity::RelativeRmse, DepthErrorQuantity::ErrorOverDetail, DepthErrorQuantity::DeltaE2000}) {
     const Plot p = depthErrorPlot({{"0°", bins}, {"H +7°", bins}}, m, q);
     ASSERT_EQ(p.series.size(), 2u);
     ASSERT_EQ(p.markers.size(), 2u);
@@ -265,7 +304,7 @@ TEST(DepthErrorPlot, MarksTheMlaPlaneLAndTheDepthOfFieldBand) {
   const Plot bare = depthErrorPlot({{"0°", bins}}, DepthMarks{}, DepthErrorQuantity::RelativeRmse);
   EXPECT_EQ(bare.markers.size(), 1u);
   EXPECT_TRUE(bare.polygons.empty());
-  // The figure: both plots, one above the other. Here the legend has to go outside the upper
+  // The figure: the three plots, one above the other. Here the legend has to go outside the upper
   // one (the marks fill its corners): the figure widens by the legend (and a font size' gap)
   // rather than the plots narrowing; without marks the legend fits inside and the figure is as
   // wide as a plot.
@@ -274,7 +313,7 @@ TEST(DepthErrorPlot, MarksTheMlaPlaneLAndTheDepthOfFieldBand) {
   ASSERT_TRUE(uf.legendOutside);
   const Image fig = depthErrorFigure({{"0°", bins}}, m);
   EXPECT_EQ(fig.width, bare.width + int(std::ceil(uf.legend.x1 - uf.legend.x0 + upper.fontSize)));
-  EXPECT_EQ(fig.height, 2 * bare.height);
+  EXPECT_EQ(fig.height, 3 * bare.height);
   ASSERT_FALSE(plotFrame(bare).legendOutside);
   EXPECT_EQ(depthErrorFigure({{"0°", bins}}, DepthMarks{}).width, bare.width);
 }
