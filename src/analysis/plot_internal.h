@@ -19,7 +19,9 @@ struct Style {
 // The plot's title in lines that each fit the image's width between the margins (broken at
 // spaces; a single word wider than that stays whole). Empty for no title.
 std::vector<std::string> titleLines(const Plot& p, const Style& st);
-// The height the title takes above the plot area (its lines and a gap), 0 without one.
+// The height of one title line; the title takes its lines and a gap above the plot area
+// (titleHeight, 0 without a title).
+double titleLineHeight(const Style& st);
 double titleHeight(const Plot& p, const Style& st);
 
 bool usable(double v, bool log);  // finite, and > 0 on a log axis

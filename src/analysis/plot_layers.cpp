@@ -33,9 +33,11 @@ std::vector<std::string> titleLines(const Plot& p, const Style& st) {
   return lines;
 }
 
+double titleLineHeight(const Style& st) { return draw::measureText("Ag", st.title).height; }
+
 double titleHeight(const Plot& p, const Style& st) {
   const auto lines = titleLines(p, st);
-  return lines.empty() ? 0.0 : lines.size() * draw::measureText("Ag", st.title).height + st.gap;
+  return lines.empty() ? 0.0 : lines.size() * titleLineHeight(st) + st.gap;
 }
 
 Vec3 seriesColor(const Plot& p, size_t i) { return p.series[i].color.value_or(plotPalette(int(i))); }

@@ -70,7 +70,7 @@ void drawColorBar(draw::Canvas& cv, const Plot& p, const PlotFrame& f, const Sty
 void drawTitles(draw::Canvas& cv, const Plot& p, const PlotFrame& f, const Style& st) {
   const double cx = 0.5 * (f.left + f.right);
   // Each line centred over the plot area, moved left (then right) to stay inside the image.
-  const double lineHeight = draw::measureText("Ag", st.title).height;
+  const double lineHeight = titleLineHeight(st);
   double y = st.margin;
   for (const std::string& line : titleLines(p, st)) {
     const double hw = 0.5 * draw::measureText(line, st.title).width;
