@@ -78,26 +78,13 @@ Axis placeAxis(int count, int n, F centrePx) {
   return a;
 }
 
-// Hex lattice: hexagonal EIs by a Voronoi assignment of the pixel grid (ei_layout.h).
-EiLayout computeHexLayout(const Display& d) {
-  EiLayout L;
-  L.kind = d.layout;
-  L.lattice = Mla::Lattice::Hex;
-  L.eiCols = d.eiCols;
-  L.eiRows = d.eiRows;
-  L.panelW = d.panel.widthPx;
-  L.panelH = d.panel.heightPx;
-  L.pixelMm = d.panel.pixelPitchMm;
-  L.gapMm = d.generationGapMm;
-  L.lensPitchMm = d.mla.pitchMm;
-  if (d.eiWidthPx != d.eiHeightPx)
-    throw InputError(d.file, "ei_px", "[" + std::to_string(d.eiWidthPx) + ", " + std::to_string(d.eiHeightPx) + "]",
-                     "one number for a hex lattice: the EI pitch along a row (flat-to-flat width) in pixels");
+// Hex lattice, step 1: lens centres, EI centres (sites) and pinholes, from the lattice's centre
+// (odd rows are shifted right by half a pitch).
+void placeHexLattice(const Display& d, EiLayout& L) {
   const double P = d.mla.pitchMm, p = L.pixelMm, g = d.generationGapMm;
   const int K = L.eiCols, R = L.eiRows;
   const double s3 = std::sqrt(3.0);
   const double E = d.eiWidthPx * p;  // EI pitch along a row (parallel, lens-grid), mm
-  // The lattice's centre: odd rows are shifted right by half a pitch.
   const double xc = 0.5 * (K - 1) + (R > 1 ? 0.25 : 0.0), yc = 0.5 * (R - 1);
   L.lensX.resize(size_t(K));
   L.lensY.resize(size_t(R));
@@ -105,7 +92,6 @@ EiLayout computeHexLayout(const Display& d) {
   for (int l = 0; l < R; ++l) L.lensY[size_t(l)] = (yc - l) * P * s3 / 2.0;
   L.oddRowLensShiftMm = 0.5 * P;
 
-  // EI centres (sites) and pinholes.
   double a = E;  // site pitch along a row
   if (d.layout == EiLayoutKind::ToedIn) {
     const double D = *d.viewingDistanceMm, m = 1.0 + g / D;
@@ -123,18 +109,19 @@ EiLayout computeHexLayout(const Display& d) {
   for (int k = 0; k < K; ++k) L.eiSiteX[size_t(k)] = (k - xc) * a;
   for (int l = 0; l < R; ++l) L.eiSiteY[size_t(l)] = (yc - l) * a * s3 / 2.0;
   L.oddRowEiShiftMm = 0.5 * a;
-  if (d.layout == EiLayoutKind::Parallel) {
-    L.pinholeX = L.eiSiteX;
-    L.pinholeY = L.eiSiteY;
-    L.oddRowPinholeShiftMm = L.oddRowEiShiftMm;
-  } else {
-    L.pinholeX = L.lensX;
-    L.pinholeY = L.lensY;
-    L.oddRowPinholeShiftMm = L.oddRowLensShiftMm;
-  }
+  const bool onSites = d.layout == EiLayoutKind::Parallel;
+  L.pinholeX = onSites ? L.eiSiteX : L.lensX;
+  L.pinholeY = onSites ? L.eiSiteY : L.lensY;
+  L.oddRowPinholeShiftMm = onSites ? L.oddRowEiShiftMm : L.oddRowLensShiftMm;
+}
 
-  // EIA extent: every EI's hexagon (flat-to-flat E, circumradius E / sqrt(3)) fits.
-  const double hw = 0.5 * E, rc = E / s3;
+// Step 2: the EIA's size (every EI's hexagon, flat-to-flat E and circumradius E / sqrt(3), fits),
+// checked against the panel and the memory budget, centred on the panel.
+void sizeHexEia(const Display& d, EiLayout& L) {
+  const int K = L.eiCols, R = L.eiRows;
+  const double a = L.eiSitePitchMm, p = L.pixelMm, s3 = std::sqrt(3.0);
+  const double xc = 0.5 * (K - 1) + (R > 1 ? 0.25 : 0.0), yc = 0.5 * (R - 1);
+  const double hw = 0.5 * L.eiFlatMm, rc = L.eiFlatMm / s3;
   const double maxX = (K - 1 - xc + (R > 1 ? 0.5 : 0.0)) * a + hw, maxY = yc * a * s3 / 2.0 + rc;
   L.eiaW = int(std::ceil(2.0 * maxX / p - 1e-9));
   L.eiaH = int(std::ceil(2.0 * maxY / p - 1e-9));
@@ -147,17 +134,21 @@ EiLayout computeHexLayout(const Display& d) {
                          std::to_string(L.panelH) + " px");
   L.panelCol0 = (L.panelW - L.eiaW) / 2;
   L.panelRow0 = (L.panelH - L.eiaH) / 2;
-
   // The pixel map: owner, pixelRay, rayPixel (4 bytes each per EIA pixel) and 4 box bounds per EI.
   checkAllocation(d.file, "ei_count", eiCountText(d) + " hex EIs on " + std::to_string(L.eiaW) + " x " +
                                           std::to_string(L.eiaH) + " px",
                   {{double(L.eiaW) * L.eiaH, 12.0}, {double(K) * R, 16.0}}, "the hex EI pixel map");
-  // Voronoi assignment: each pixel to its nearest site (of the infinite lattice), kept when
-  // that site is an indexed EI (and, toed-in, when the pixel is inside its hexagon).
-  const int W = L.eiaW, H = L.eiaH;
+}
+
+// Step 3, the Voronoi assignment: each EIA pixel to its nearest site (of the infinite lattice),
+// kept when that site is an indexed EI (and, toed-in, when the pixel is inside its hexagon).
+// Per pixel: its EI in ray order, -1 for none.
+std::vector<int32_t> hexPixelOwners(const EiLayout& L) {
+  const int W = L.eiaW, H = L.eiaH, K = L.eiCols, R = L.eiRows;
+  const double a = L.eiSitePitchMm, p = L.pixelMm, s3 = std::sqrt(3.0), hw = 0.5 * L.eiFlatMm;
   const double rowH = a * s3 / 2.0, sx0 = L.eiSiteX[0], sy0 = L.eiSiteY[0];
-  const bool clip = d.layout == EiLayoutKind::ToedIn;
-  std::vector<int32_t> owner(size_t(W) * size_t(H), -1);  // EI in ray order
+  const bool clip = L.kind == EiLayoutKind::ToedIn;
+  std::vector<int32_t> owner(size_t(W) * size_t(H), -1);
   for (int r = 0; r < H; ++r) {
     const double y = (0.5 * H - r - 0.5) * p;
     const int l0 = int(std::floor((sy0 - y) / rowH + 0.5));
@@ -178,7 +169,13 @@ EiLayout computeHexLayout(const Display& d) {
       owner[size_t(r) * size_t(W) + size_t(c)] = int32_t(L.eiOrder(bk, bl));
     }
   }
-  // Bounding boxes: per EI column and row parity (columns), per row (rows).
+  return owner;
+}
+
+// Step 4: the EIs' boxes, per EI column and row parity (columns) and per row (rows), and the
+// largest box's size (eiW x eiH). An EI without pixels (ei_px tiny) gets its site's pixel.
+void placeHexBoxes(EiLayout& L, const std::vector<int32_t>& owner) {
+  const int W = L.eiaW, H = L.eiaH, K = L.eiCols, R = L.eiRows;
   const int64_t nE = L.numEis();
   std::vector<int> c0(size_t(nE), INT32_MAX), c1(size_t(nE), -1), r0(size_t(nE), INT32_MAX), r1(size_t(nE), -1);
   for (int r = 0; r < H; ++r)
@@ -194,15 +191,17 @@ EiLayout computeHexLayout(const Display& d) {
   for (int k = 0; k < K; ++k)
     for (int l = 0; l < R; ++l) {
       const size_t e = size_t(L.eiOrder(k, l));
-      if (c1[e] < 0) continue;  // an EI without pixels (ei_px tiny)
+      if (c1[e] < 0) continue;
       int& col0 = (l & 1) ? L.eiCol0Odd[size_t(k)] : L.eiCol0[size_t(k)];
       col0 = std::min(col0, c0[e]);
       L.eiRow0[size_t(l)] = std::min(L.eiRow0[size_t(l)], r0[e]);
     }
+  const double p = L.pixelMm;
   auto fallbackCol = [&](double x) { return std::clamp(int(std::floor(x / p + 0.5 * W)), 0, W - 1); };
   for (int k = 0; k < K; ++k) {
     if (L.eiCol0[size_t(k)] == INT32_MAX) L.eiCol0[size_t(k)] = fallbackCol(L.eiSiteX[size_t(k)]);
-    if (L.eiCol0Odd[size_t(k)] == INT32_MAX) L.eiCol0Odd[size_t(k)] = fallbackCol(L.eiSiteX[size_t(k)] + 0.5 * a);
+    if (L.eiCol0Odd[size_t(k)] == INT32_MAX)
+      L.eiCol0Odd[size_t(k)] = fallbackCol(L.eiSiteX[size_t(k)] + 0.5 * L.eiSitePitchMm);
   }
   for (int l = 0; l < R; ++l)
     if (L.eiRow0[size_t(l)] == INT32_MAX)
@@ -215,8 +214,13 @@ EiLayout computeHexLayout(const Display& d) {
       L.eiW = std::max(L.eiW, c1[e] - L.eiBoxCol0(k, l) + 1);
       L.eiH = std::max(L.eiH, r1[e] - L.eiBoxRow0(k, l) + 1);
     }
-  // Rays in ray order: EIs (columns from the left, rows from the bottom), then in each EI's
-  // box columns from the left, rows from the bottom, the pixels the EI owns.
+}
+
+// Step 5, the rays in ray order: EIs (columns from the left, rows from the bottom), then in each
+// EI's box columns from the left, rows from the bottom, the pixels the EI owns.
+std::shared_ptr<EiPixelMap> hexPixelMap(const EiLayout& L, const std::vector<int32_t>& owner) {
+  const int W = L.eiaW, H = L.eiaH;
+  const int64_t nE = L.numEis();
   auto map = std::make_shared<EiPixelMap>();
   map->eiRayStart.resize(size_t(nE) + 1);
   map->pixelRay.assign(owner.size(), -1);
@@ -241,7 +245,29 @@ EiLayout computeHexLayout(const Display& d) {
   }
   map->eiRayStart[size_t(nE)] = int64_t(map->rayPixel.size());
   map->rayPixel.shrink_to_fit();
-  L.pixelMap = std::move(map);
+  return map;
+}
+
+// Hex lattice: hexagonal EIs by a Voronoi assignment of the pixel grid (ei_layout.h).
+EiLayout computeHexLayout(const Display& d) {
+  EiLayout L;
+  L.kind = d.layout;
+  L.lattice = Mla::Lattice::Hex;
+  L.eiCols = d.eiCols;
+  L.eiRows = d.eiRows;
+  L.panelW = d.panel.widthPx;
+  L.panelH = d.panel.heightPx;
+  L.pixelMm = d.panel.pixelPitchMm;
+  L.gapMm = d.generationGapMm;
+  L.lensPitchMm = d.mla.pitchMm;
+  if (d.eiWidthPx != d.eiHeightPx)
+    throw InputError(d.file, "ei_px", "[" + std::to_string(d.eiWidthPx) + ", " + std::to_string(d.eiHeightPx) + "]",
+                     "one number for a hex lattice: the EI pitch along a row (flat-to-flat width) in pixels");
+  placeHexLattice(d, L);
+  sizeHexEia(d, L);
+  const std::vector<int32_t> owner = hexPixelOwners(L);
+  placeHexBoxes(L, owner);
+  L.pixelMap = hexPixelMap(L, owner);
   return L;
 }
 
