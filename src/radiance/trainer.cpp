@@ -165,139 +165,170 @@ bool occupiedBox(const VoxelGrid& g, float alpha, int margin, Point3& lo, Point3
   return glm::all(glm::lessThan(lo, hi));
 }
 
+// One training run's state and the steps of an iteration, in the order train() calls them.
+class TrainingLoop {
+ public:
+  TrainingLoop(VoxelGrid& grid, const TrainingRays& rays, const TrainConfig& cfg)
+      : grid_(grid), rays_(rays), cfg_(cfg), numChunks_((cfg.batchSize + kChunkRays - 1) / kChunkRays) {
+    grid_ = VoxelGrid::create(cfg.boxLo, cfg.boxHi, VoxelGrid::resolutionFor(cfg.boxLo, cfg.boxHi, cfg.resolutions[0]),
+                              cfg.shDegree, cfg.activation, cfg.background, cfg.initAlpha);
+    opt_.reset(grid_);
+    chunks_.resize(size_t(numChunks_));
+  }
+
+  // Coarse-to-fine growth (and box tightening after the first stage), the occupancy refresh and
+  // what the iteration's steps share.
+  void beginIteration(int it) {
+    if (stage_ + 1 < cfg_.resolutions.size() && it == cfg_.stageStarts[stage_ + 1]) {
+      ++stage_;
+      Point3 lo = grid_.lo, hi = grid_.hi;
+      if (stage_ == 1 && cfg_.tightenBox) {
+        Point3 tlo, thi;
+        if (occupiedBox(grid_, cfg_.tightenAlpha, cfg_.tightenMarginCells, tlo, thi)) lo = tlo, hi = thi;
+      }
+      grid_ = grid_.resampled(lo, hi, VoxelGrid::resolutionFor(lo, hi, cfg_.resolutions[stage_]));
+      opt_.reset(grid_);
+    }
+    if (it % cfg_.occupancyInterval == 0 || occ_.cellRes() != grid_.res - 1)
+      occ_.update(grid_, cfg_.march.stepWorld(grid_), cfg_.march.occupancyAlpha);
+    slabs_ = opt_.slabs;
+    buckets_.resize(size_t(numChunks_) * size_t(slabs_));
+    touched_.resize(size_t(slabs_));
+    step_ = cfg_.march.stepWorld(grid_);
+    lossWeight_ = 1.0f / (3.0f * float(cfg_.batchSize));
+  }
+
+  // 1. Forward + backward per chunk; records go to per-(chunk, slab) buckets.
+  void forwardBackward(int it) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, numChunks_, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int c = r.begin(); c < r.end(); ++c) forwardBackwardChunk(it, c);
+    });
+  }
+
+  // 2. Ordered scatter per slab, then TV on the touched vertices.
+  void scatterAndTv(int it) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, slabs_, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int s = r.begin(); s < r.end(); ++s) scatterSlab(it, s);
+    });
+  }
+
+  // 3. Lazy Adam on the touched vertices (after all TV reads of the current values).
+  void adamStep(int it) {
+    opt_.step++;
+    const float decay = std::pow(cfg_.lrFinalFactor, float(it) / float(std::max(1, cfg_.iterations)));
+    tbb::parallel_for(tbb::blocked_range<int>(0, slabs_, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int s = r.begin(); s < r.end(); ++s) {
+        const auto& list = touched_[size_t(s)];
+        opt_.adamDensity.update(list, grid_.density.data(), opt_.gradDensity.data(), cfg_.lrDensity * decay,
+                                opt_.step);
+        opt_.adamColor.update(list, grid_.color.data(), opt_.gradColor.data(), cfg_.lrColor * decay, opt_.step);
+        for (uint32_t v : list) opt_.touchedFlag[v] = 0;
+      }
+    });
+  }
+
+  // The iteration's loss (mean squared error per channel) and samples marched per ray.
+  double loss(double& samplesPerRay) const {
+    double sq = 0.0;
+    size_t samples = 0;
+    for (const Chunk& ch : chunks_) sq += ch.sqError, samples += ch.samples;
+    samplesPerRay = double(samples) / double(cfg_.batchSize);
+    return sq / (3.0 * double(cfg_.batchSize));
+  }
+  double occupiedFraction() const { return occ_.occupiedFraction(); }
+
+ private:
+  void forwardBackwardChunk(int it, int c) {
+    Chunk& ch = chunks_[size_t(c)];
+    ch.sqError = 0.0;
+    ch.samples = 0;
+    ch.sh.resize(size_t(kChunkRays) * kMaxShCount);
+    for (int s = 0; s < slabs_; ++s) buckets_[size_t(c) * slabs_ + s].clear();
+    const size_t sx = size_t(grid_.res.y) * size_t(grid_.res.z), numRays = rays_.size();
+    const int k0 = c * kChunkRays, k1 = std::min(cfg_.batchSize, k0 + kChunkRays);
+    for (int k = k0; k < k1; ++k) {
+      Rng rng = Rng::forSample(cfg_.seed, uint64_t(it), uint64_t(k));
+      uint64_t pick = (uint64_t(rng.nextU32()) << 32) | rng.nextU32();
+      size_t idx = size_t(pick % numRays);
+      float jitter = rng.uniform();
+      Vec3 dir = rays_.dir[idx];
+      float len = glm::length(dir);
+      const Vec3& target = rays_.rgb[idx];
+      GridRay gr;
+      RadianceSample res = backgroundResult(grid_);
+      ch.grads.clear();
+      if (len > 0.0f && makeGridRay(grid_, rays_.origin[idx], dir / len, rays_.tNear.empty() ? cfg_.nearT : rays_.tNear[idx],
+                                    rays_.tFar.empty() ? cfg_.farT : rays_.tFar[idx], step_, gr)) {
+        res = marchRayGrad(grid_, occ_, gr, jitter, cfg_.march.minTransmittance, target, lossWeight_, ch.scratch,
+                           ch.grads);
+        evalSh(grid_.shDegree, gr.dir, &ch.sh[size_t(k - k0) * kMaxShCount]);
+      }
+      Vec3 e = res.rgb - target;
+      ch.sqError += double(e.x) * e.x + double(e.y) * e.y + double(e.z) * e.z;
+      ch.samples += ch.grads.size();
+      for (const SampleGrad& sg : ch.grads) {
+        size_t x0 = sg.base / sx;
+        int s0 = opt_.slabOfX[x0], s1 = opt_.slabOfX[x0 + 1];
+        buckets_[size_t(c) * slabs_ + s0].push_back({sg, uint32_t(k - k0)});
+        if (s1 != s0) buckets_[size_t(c) * slabs_ + s1].push_back({sg, uint32_t(k - k0)});
+      }
+    }
+  }
+
+  void scatterSlab(int it, int s) {
+    auto& list = touched_[size_t(s)];
+    list.clear();
+    for (int c = 0; c < numChunks_; ++c) {
+      const float* shBase = chunks_[size_t(c)].sh.data();
+      for (const SlabRecord& rec : buckets_[size_t(c) * slabs_ + s]) {
+        const float* sh = shBase + size_t(rec.ray) * kMaxShCount;
+        switch (grid_.shDegree) {
+          case 0: scatter<0>(rec, sh, s, grid_, opt_, list); break;
+          case 1: scatter<1>(rec, sh, s, grid_, opt_, list); break;
+          default: scatter<2>(rec, sh, s, grid_, opt_, list); break;
+        }
+      }
+    }
+    if ((cfg_.tvDensity > 0.0f || cfg_.tvColor > 0.0f) && it % cfg_.tvInterval == 0) {
+      float w = lossWeight_ * float(cfg_.tvInterval);
+      for (uint32_t v : list) addTv(grid_, v, cfg_.tvDensity * w, cfg_.tvColor * w, opt_);
+    }
+  }
+
+  VoxelGrid& grid_;
+  const TrainingRays& rays_;
+  const TrainConfig& cfg_;
+  const int numChunks_;
+  Optimiser opt_;
+  OccupancyGrid occ_;
+  std::vector<Chunk> chunks_;
+  std::vector<std::vector<SlabRecord>> buckets_;
+  std::vector<std::vector<uint32_t>> touched_;
+  size_t stage_ = 0;
+  int slabs_ = 1;
+  float step_ = 0.0f, lossWeight_ = 0.0f;
+};
+
 }  // namespace
 
 TrainStats train(VoxelGrid& grid, const TrainingRays& rays, const TrainConfig& cfg,
                  const std::function<bool(const TrainProgress&)>& onProgress) {
   validate(rays, cfg);
-  auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
-  const size_t numRays = rays.size();
-  const int batch = cfg.batchSize;
-  const int numChunks = (batch + kChunkRays - 1) / kChunkRays;
-
-  grid = VoxelGrid::create(cfg.boxLo, cfg.boxHi,
-                           VoxelGrid::resolutionFor(cfg.boxLo, cfg.boxHi, cfg.resolutions[0]),
-                           cfg.shDegree, cfg.activation, cfg.background, cfg.initAlpha);
-  Optimiser opt;
-  opt.reset(grid);
-  OccupancyGrid occ;
-  std::vector<Chunk> chunks(static_cast<size_t>(numChunks));
-  std::vector<std::vector<SlabRecord>> buckets;
-  std::vector<std::vector<uint32_t>> touched;
-  size_t stage = 0;
-
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  TrainingLoop loop(grid, rays, cfg);
   TrainStats stats;
   double lastLoss = 0.0;
   for (int it = 0; it < cfg.iterations; ++it) {
-    // Coarse-to-fine growth (and box tightening after the first stage).
-    if (stage + 1 < cfg.resolutions.size() && it == cfg.stageStarts[stage + 1]) {
-      ++stage;
-      Point3 lo = grid.lo, hi = grid.hi;
-      if (stage == 1 && cfg.tightenBox) {
-        Point3 tlo, thi;
-        if (occupiedBox(grid, cfg.tightenAlpha, cfg.tightenMarginCells, tlo, thi)) lo = tlo, hi = thi;
-      }
-      grid = grid.resampled(lo, hi, VoxelGrid::resolutionFor(lo, hi, cfg.resolutions[stage]));
-      opt.reset(grid);
-    }
-    if (it % cfg.occupancyInterval == 0 || occ.cellRes() != grid.res - 1)
-      occ.update(grid, cfg.march.stepWorld(grid), cfg.march.occupancyAlpha);
-
-    const int slabs = opt.slabs;
-    buckets.resize(size_t(numChunks) * size_t(slabs));
-    touched.resize(size_t(slabs));
-    const float step = cfg.march.stepWorld(grid);
-    const float lossWeight = 1.0f / (3.0f * float(batch));
-    const size_t sx = size_t(grid.res.y) * size_t(grid.res.z);
-
-    // 1. Forward + backward per chunk; records go to per-(chunk, slab) buckets.
-    tbb::parallel_for(tbb::blocked_range<int>(0, numChunks, 1), [&](const tbb::blocked_range<int>& r) {
-      for (int c = r.begin(); c < r.end(); ++c) {
-        Chunk& ch = chunks[size_t(c)];
-        ch.sqError = 0.0;
-        ch.samples = 0;
-        ch.sh.resize(size_t(kChunkRays) * kMaxShCount);
-        for (int s = 0; s < slabs; ++s) buckets[size_t(c) * slabs + s].clear();
-        int k0 = c * kChunkRays, k1 = std::min(batch, k0 + kChunkRays);
-        for (int k = k0; k < k1; ++k) {
-          Rng rng = Rng::forSample(cfg.seed, uint64_t(it), uint64_t(k));
-          uint64_t pick = (uint64_t(rng.nextU32()) << 32) | rng.nextU32();
-          size_t idx = size_t(pick % numRays);
-          float jitter = rng.uniform();
-          Vec3 dir = rays.dir[idx];
-          float len = glm::length(dir);
-          const Vec3& target = rays.rgb[idx];
-          GridRay gr;
-          RadianceSample res = backgroundResult(grid);
-          ch.grads.clear();
-          if (len > 0.0f &&
-              makeGridRay(grid, rays.origin[idx], dir / len,
-                          rays.tNear.empty() ? cfg.nearT : rays.tNear[idx],
-                          rays.tFar.empty() ? cfg.farT : rays.tFar[idx], step, gr)) {
-            res = marchRayGrad(grid, occ, gr, jitter, cfg.march.minTransmittance, target,
-                               lossWeight, ch.scratch, ch.grads);
-            evalSh(grid.shDegree, gr.dir, &ch.sh[size_t(k - k0) * kMaxShCount]);
-          }
-          Vec3 e = res.rgb - target;
-          ch.sqError += double(e.x) * e.x + double(e.y) * e.y + double(e.z) * e.z;
-          ch.samples += ch.grads.size();
-          for (const SampleGrad& sg : ch.grads) {
-            size_t x0 = sg.base / sx;
-            int s0 = opt.slabOfX[x0], s1 = opt.slabOfX[x0 + 1];
-            buckets[size_t(c) * slabs + s0].push_back({sg, uint32_t(k - k0)});
-            if (s1 != s0) buckets[size_t(c) * slabs + s1].push_back({sg, uint32_t(k - k0)});
-          }
-        }
-      }
-    });
-
-    // 2. Ordered scatter per slab, then TV on the touched vertices.
-    tbb::parallel_for(tbb::blocked_range<int>(0, slabs, 1), [&](const tbb::blocked_range<int>& r) {
-      for (int s = r.begin(); s < r.end(); ++s) {
-        auto& list = touched[size_t(s)];
-        list.clear();
-        for (int c = 0; c < numChunks; ++c) {
-          const float* shBase = chunks[size_t(c)].sh.data();
-          for (const SlabRecord& rec : buckets[size_t(c) * slabs + s]) {
-            const float* sh = shBase + size_t(rec.ray) * kMaxShCount;
-            switch (grid.shDegree) {
-              case 0: scatter<0>(rec, sh, s, grid, opt, list); break;
-              case 1: scatter<1>(rec, sh, s, grid, opt, list); break;
-              default: scatter<2>(rec, sh, s, grid, opt, list); break;
-            }
-          }
-        }
-        if ((cfg.tvDensity > 0.0f || cfg.tvColor > 0.0f) && it % cfg.tvInterval == 0) {
-          float w = lossWeight * float(cfg.tvInterval);
-          for (uint32_t v : list) addTv(grid, v, cfg.tvDensity * w, cfg.tvColor * w, opt);
-        }
-      }
-    });
-
-    // 3. Lazy Adam on the touched vertices (after all TV reads of the current values).
-    opt.step++;
-    float decay = std::pow(cfg.lrFinalFactor, float(it) / float(std::max(1, cfg.iterations)));
-    tbb::parallel_for(tbb::blocked_range<int>(0, slabs, 1), [&](const tbb::blocked_range<int>& r) {
-      for (int s = r.begin(); s < r.end(); ++s) {
-        const auto& list = touched[size_t(s)];
-        opt.adamDensity.update(list, grid.density.data(), opt.gradDensity.data(),
-                               cfg.lrDensity * decay, opt.step);
-        opt.adamColor.update(list, grid.color.data(), opt.gradColor.data(), cfg.lrColor * decay,
-                             opt.step);
-        for (uint32_t v : list) opt.touchedFlag[v] = 0;
-      }
-    });
-
-    double sq = 0.0;
-    size_t samples = 0;
-    for (const Chunk& ch : chunks) sq += ch.sqError, samples += ch.samples;
-    lastLoss = sq / (3.0 * double(batch));
+    loop.beginIteration(it);
+    loop.forwardBackward(it);
+    loop.scatterAndTv(it);
+    loop.adamStep(it);
+    double samplesPerRay = 0.0;
+    lastLoss = loop.loss(samplesPerRay);
     stats.iterations = it + 1;
-    bool last = it + 1 == cfg.iterations;
-    bool overTime = cfg.timeBudgetSeconds > 0.0 && elapsed() > cfg.timeBudgetSeconds;
+    const bool last = it + 1 == cfg.iterations;
+    const bool overTime = cfg.timeBudgetSeconds > 0.0 && elapsed() > cfg.timeBudgetSeconds;
     if (onProgress && ((it + 1) % std::max(1, cfg.progressInterval) == 0 || last || overTime)) {
       TrainProgress p;
       p.iteration = it + 1;
@@ -306,8 +337,8 @@ TrainStats train(VoxelGrid& grid, const TrainingRays& rays, const TrainConfig& c
       p.psnr = psnrFromMse(lastLoss);
       p.elapsedSeconds = elapsed();
       p.res = grid.res;
-      p.occupiedFraction = occ.occupiedFraction();
-      p.samplesPerRay = double(samples) / double(batch);
+      p.occupiedFraction = loop.occupiedFraction();
+      p.samplesPerRay = samplesPerRay;
       if (!onProgress(p)) {
         stats.stoppedEarly = !last;
         break;
