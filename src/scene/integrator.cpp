@@ -174,6 +174,146 @@ SampledSpectrum Integrator::LiFromHit(const Ray& ray0, bool didHit, const Hit& f
   return liImpl<false>(ray0, didHit, firstHit, lambda, rng, hitT, deferred);
 }
 
+// The state a path carries from vertex to vertex.
+struct Integrator::PathState {
+  SampledSpectrum L{0.0f}, beta{1.0f};
+  bool specular = true;  // emitters seen by the query ray or through specular chains count fully
+  float prevPdf = 0.0f;
+  LightSampleContext prevCtx;
+  const Material* medium = nullptr;  // absorbing dielectric the ray travels in
+};
+
+// The environment seen by a ray that leaves the scene: fully after a specular chain, MIS-weighted
+// against light sampling after a non-specular vertex (path mode only).
+INIM_ALWAYS_INLINE inline void Integrator::addEscaped(PathState& st, const Ray& ray, const SampledWavelengths& lambda,
+                                                      bool path) const {
+  const int env = lights_.environment();
+  if (env < 0) return;
+  const SampledSpectrum Le = lights_.environmentLe(lambda);
+  if (st.specular) {
+    st.L += st.beta * Le;
+  } else if (path) {
+    const float pl = lights_.pmf(env) * lights_.pdfEnvironment(st.prevCtx, ray.d);
+    st.L += st.beta * Le * powerHeuristic(st.prevPdf, pl);
+  }
+}
+
+// An emitter hit, weighted like addEscaped.
+INIM_ALWAYS_INLINE inline void Integrator::addEmitted(PathState& st, const Hit& h, const Shape& s, const Material& m,
+                                                      bool front, const SampledWavelengths& lambda, bool path) const {
+  if (!m.emissive || !(m.twoSided || front)) return;
+  const SampledSpectrum Le = m.Le.sample(lambda);
+  if (st.specular) {
+    st.L += st.beta * Le;
+  } else if (path && s.light >= 0) {
+    const float pl = lights_.pmf(s.light) * lights_.pdfArea(s.light, st.prevCtx, h);
+    st.L += st.beta * Le * powerHeuristic(st.prevPdf, pl);
+  }
+}
+
+// The next direction from a non-specular vertex (diffuse: cosine-weighted; rough conductor:
+// GGX visible normals), its throughput folded into st.beta. False: the path ends.
+INIM_ALWAYS_INLINE inline bool Integrator::sampleBsdf(const Vertex& v, const SampledWavelengths& lambda,
+                                                      PathRandom& rng, PathState& st, Vec3& wi) const {
+  const Material& m = *v.m;
+  Frame f = Frame::fromZ(v.ns);
+  Vec2 u(rng.uniform(), rng.uniform());
+  float pdf;
+  SampledSpectrum weight;
+  if (m.type == MaterialType::Diffuse) {
+    Vec3 wiL = sampleCosineHemisphere(u);
+    pdf = cosineHemispherePdf(wiL.z);
+    wi = f.fromLocal(wiL);
+    weight = v.albedo;  // f cos / pdf
+  } else {
+    Vec3 woL = f.toLocal(v.wo);
+    if (woL.z <= 0.0f) return false;
+    Vec3 wm = ggx::sampleWm(woL, u, m.alpha);
+    Vec3 wiL = reflect(woL, wm);
+    if (wiL.z <= 0.0f) return false;
+    pdf = ggx::pdfReflect(woL, wiL, m.alpha);
+    if (!(pdf > 0.0f)) return false;
+    wi = f.fromLocal(wiL);
+    weight = roughConductorF(m, woL, wiL, lambda) * (wiL.z / pdf);
+  }
+  if (!(pdf > 0.0f) || glm::dot(wi, v.ng) <= 0.0f) return false;
+  st.beta *= weight;
+  st.specular = false;
+  st.prevPdf = pdf;
+  st.prevCtx = LightSampleContext{v.h->p, v.ns};
+  wi = glm::normalize(wi);
+  return true;
+}
+
+// The next direction from a specular vertex: a mirror, a dielectric interface (reflect or
+// refract, a dispersive one keeping the hero wavelength only) or a thin sheet (reflect or pass
+// straight through). A sheet that neither reflects nor transmits leaves st.beta black.
+INIM_ALWAYS_INLINE inline void Integrator::scatterSpecular(const Vertex& v, SampledWavelengths& lambda,
+                                                           PathRandom& rng, PathState& st, Vec3& wi) const {
+  const Material& m = *v.m;
+  const Hit& h = *v.h;
+  const Vec3 wo = v.wo;
+  switch (m.type) {
+    case MaterialType::Conductor: {
+      st.beta *= conductorFresnel(m, std::abs(glm::dot(v.ns, wo)), lambda);
+      wi = reflect(wo, v.ns);
+      st.specular = true;
+      break;
+    }
+    case MaterialType::Dielectric: {
+      // h.ns points outward: cos > 0 means the ray arrives from outside.
+      float cosO = glm::dot(h.ns, wo);
+      float n0 = m.n(lambda[0]);
+      float R0 = fresnelDielectric(cosO, n0);
+      SampledSpectrum R(R0);
+      if (m.dispersive)
+        for (int i = 1; i < kNumWavelengths; ++i) R[i] = fresnelDielectric(cosO, m.n(lambda[i]));
+      float etap;
+      Vec3 wt;
+      bool canRefract = R0 < 1.0f && refract(wo, h.ns, n0, &etap, &wt);
+      if (!canRefract || rng.uniform() < R0) {
+        wi = reflect(wo, h.ns);
+        if (canRefract) st.beta *= R / R0;  // R0 == 1 (TIR): weight R(lambda)/1
+        else st.beta *= R;
+      } else {
+        if (m.dispersive && !lambda.secondaryTerminated()) {
+          // Each wavelength refracts its own way: only the hero goes on.
+          lambda.terminateSecondary();
+          for (int i = 1; i < kNumWavelengths; ++i) st.beta[i] = 0.0f;
+        }
+        // Weight T/(1-R0) == 1 at the hero wavelength; radiance scales by 1/eta^2.
+        st.beta *= 1.0f / (etap * etap);
+        wi = wt;
+        st.medium = (cosO > 0.0f && m.absorbing) ? &m : nullptr;
+      }
+      st.specular = true;
+      break;
+    }
+    default: {  // thin dielectric sheet: reflect, or pass straight through
+      SampledSpectrum R;
+      SampledSpectrum T = thinTransmittance(m, std::abs(glm::dot(v.ng, wo)), lambda, &R);
+      float ra = R.average(), ta = T.average();
+      if (!(ra + ta > 0.0f)) {
+        st.beta = SampledSpectrum(0.0f);
+        break;
+      }
+      float pR = ra / (ra + ta);
+      if (rng.uniform() < pR) {
+        wi = reflect(wo, v.ng);
+        st.beta *= R / pR;
+        st.specular = true;
+      } else {
+        wi = -wo;
+        st.beta *= T / (1.0f - pR);
+        // With coloured shadows, light sampling already looked through the sheet, so
+        // the path keeps the MIS state of its last scattering vertex.
+        if (!settings_.filterShadows) st.specular = true;
+      }
+      break;
+    }
+  }
+}
+
 // One instance per integrator type, so that the direct one carries no path-tracing code
 // (smaller, and its helpers are inlined once).
 template <bool kPath>
@@ -181,57 +321,30 @@ SampledSpectrum Integrator::liImpl(const Ray& ray0, bool didHit, const Hit& firs
                                    SampledWavelengths& lambda, PathRandom& rng, float* hitT,
                                    ShadowRequest* deferred) const {
   constexpr bool path = kPath;
-  SampledSpectrum L(0.0f), beta(1.0f);
+  PathState st;
   // The current ray: the caller's at depth 0 (not copied), then `next`.
   const Ray* rayp = &ray0;
   Ray next;
-  bool specular = true;  // emitters seen by the query ray or through specular chains count fully
-  float prevPdf = 0.0f;
-  LightSampleContext prevCtx;
-  const Material* medium = nullptr;  // absorbing dielectric the ray travels in
   *hitT = kInfinity;
 
   Hit scratch;
   for (int depth = 0;; ++depth) {
-    bool hit;
-    if (depth == 0) {
-      hit = didHit;
-    } else {
-      hit = geom_.intersect(*rayp, &scratch);
-    }
+    const bool hit = depth == 0 ? didHit : geom_.intersect(*rayp, &scratch);
     const Hit& h = depth == 0 ? firstHit : scratch;
     if (!hit) {
-      int env = lights_.environment();
-      if (env >= 0) {
-        SampledSpectrum Le = lights_.environmentLe(lambda);
-        if (specular) {
-          L += beta * Le;
-        } else if (path) {
-          float pl = lights_.pmf(env) * lights_.pdfEnvironment(prevCtx, rayp->d);
-          L += beta * Le * powerHeuristic(prevPdf, pl);
-        }
-      }
+      addEscaped(st, *rayp, lambda, path);
       break;
     }
     if (depth == 0) *hitT = h.t;
-    if (medium) {
+    if (st.medium) {
       for (int i = 0; i < kNumWavelengths; ++i)
-        beta[i] *= std::exp(-medium->sigma(lambda[i]) * h.t);
+        st.beta[i] *= std::exp(-st.medium->sigma(lambda[i]) * h.t);
     }
     const Shape& s = geom_.shape(h.shape);
     const Material& m = materials_[s.material];
     Vec3 wo = -rayp->d;
     bool front = glm::dot(h.ng, wo) >= 0.0f;
-
-    if (m.emissive && (m.twoSided || front)) {
-      SampledSpectrum Le = m.Le.sample(lambda);
-      if (specular) {
-        L += beta * Le;
-      } else if (path && s.light >= 0) {
-        float pl = lights_.pmf(s.light) * lights_.pdfArea(s.light, prevCtx, h);
-        L += beta * Le * powerHeuristic(prevPdf, pl);
-      }
-    }
+    addEmitted(st, h, s, m, front, lambda, path);
     if (m.type == MaterialType::Emitter) break;
     const bool last = depth >= settings_.maxDepth;
     Vertex v{&h, &m, wo, front ? h.ng : -h.ng, front ? h.ns : -h.ns, SampledSpectrum(0.0f)};
@@ -243,109 +356,26 @@ SampledSpectrum Integrator::liImpl(const Ray& ray0, bool didHit, const Hit& firs
                        ? m.reflectance.constantSpectrum().sample(lambda)
                        : m.reflectance.evaluate(h.tex, lambda);
       if (!path) {  // direct lighting ends at the first non-specular surface
-        L += directLight(v, lambda, rng, false, beta, deferred);
+        st.L += directLight(v, lambda, rng, false, st.beta, deferred);
         break;
       }
       if (last) break;
-      L += directLight(v, lambda, rng, true, beta, nullptr);
-      Frame f = Frame::fromZ(v.ns);
-      Vec2 u(rng.uniform(), rng.uniform());
-      float pdf;
-      SampledSpectrum weight;
-      if (m.type == MaterialType::Diffuse) {
-        Vec3 wiL = sampleCosineHemisphere(u);
-        pdf = cosineHemispherePdf(wiL.z);
-        wi = f.fromLocal(wiL);
-        weight = v.albedo;  // f cos / pdf
-      } else {
-        Vec3 woL = f.toLocal(wo);
-        if (woL.z <= 0.0f) break;
-        Vec3 wm = ggx::sampleWm(woL, u, m.alpha);
-        Vec3 wiL = reflect(woL, wm);
-        if (wiL.z <= 0.0f) break;
-        pdf = ggx::pdfReflect(woL, wiL, m.alpha);
-        if (!(pdf > 0.0f)) break;
-        wi = f.fromLocal(wiL);
-        weight = roughConductorF(m, woL, wiL, lambda) * (wiL.z / pdf);
-      }
-      if (!(pdf > 0.0f) || glm::dot(wi, v.ng) <= 0.0f) break;
-      beta *= weight;
-      specular = false;
-      prevPdf = pdf;
-      prevCtx = LightSampleContext{h.p, v.ns};
-      wi = glm::normalize(wi);
+      st.L += directLight(v, lambda, rng, true, st.beta, nullptr);
+      if (!sampleBsdf(v, lambda, rng, st, wi)) break;
     } else {
       if (last) break;
-      switch (m.type) {
-        case MaterialType::Conductor: {
-          beta *= conductorFresnel(m, std::abs(glm::dot(v.ns, wo)), lambda);
-          wi = reflect(wo, v.ns);
-          specular = true;
-          break;
-        }
-        case MaterialType::Dielectric: {
-          // h.ns points outward: cos > 0 means the ray arrives from outside.
-          float cosO = glm::dot(h.ns, wo);
-          float n0 = m.n(lambda[0]);
-          float R0 = fresnelDielectric(cosO, n0);
-          SampledSpectrum R(R0);
-          if (m.dispersive)
-            for (int i = 1; i < kNumWavelengths; ++i) R[i] = fresnelDielectric(cosO, m.n(lambda[i]));
-          float etap;
-          Vec3 wt;
-          bool canRefract = R0 < 1.0f && refract(wo, h.ns, n0, &etap, &wt);
-          if (!canRefract || rng.uniform() < R0) {
-            wi = reflect(wo, h.ns);
-            if (canRefract) beta *= R / R0;  // R0 == 1 (TIR): weight R(lambda)/1
-            else beta *= R;
-          } else {
-            if (m.dispersive && !lambda.secondaryTerminated()) {
-              // Each wavelength refracts its own way: only the hero goes on.
-              lambda.terminateSecondary();
-              for (int i = 1; i < kNumWavelengths; ++i) beta[i] = 0.0f;
-            }
-            // Weight T/(1-R0) == 1 at the hero wavelength; radiance scales by 1/eta^2.
-            beta *= 1.0f / (etap * etap);
-            wi = wt;
-            medium = (cosO > 0.0f && m.absorbing) ? &m : nullptr;
-          }
-          specular = true;
-          break;
-        }
-        default: {  // thin dielectric sheet: reflect, or pass straight through
-          SampledSpectrum R;
-          SampledSpectrum T = thinTransmittance(m, std::abs(glm::dot(v.ng, wo)), lambda, &R);
-          float ra = R.average(), ta = T.average();
-          if (!(ra + ta > 0.0f)) {
-            beta = SampledSpectrum(0.0f);
-            break;
-          }
-          float pR = ra / (ra + ta);
-          if (rng.uniform() < pR) {
-            wi = reflect(wo, v.ng);
-            beta *= R / pR;
-            specular = true;
-          } else {
-            wi = -wo;
-            beta *= T / (1.0f - pR);
-            // With coloured shadows, light sampling already looked through the sheet, so
-            // the path keeps the MIS state of its last scattering vertex.
-            if (!settings_.filterShadows) specular = true;
-          }
-          break;
-        }
-      }
+      scatterSpecular(v, lambda, rng, st, wi);
     }
-    if (beta.isBlack()) break;
+    if (st.beta.isBlack()) break;
     if (path && settings_.rrDepth >= 0 && depth >= settings_.rrDepth) {
-      float q = std::max(0.0f, 1.0f - beta.maxValue());
+      float q = std::max(0.0f, 1.0f - st.beta.maxValue());
       if (rng.uniform() < q) break;
-      beta = beta / (1.0f - q);
+      st.beta = st.beta / (1.0f - q);
     }
     next = Ray{spawnOrigin(h, wi), wi, 0.0f, kInfinity};
     rayp = &next;
   }
-  return L;
+  return st.L;
 }
 
 }  // namespace inim

@@ -72,7 +72,8 @@ class Integrator {
   const IntegratorSettings& settings() const { return settings_; }
 
  private:
-  struct Vertex;  // a shading point (integrator.cpp)
+  struct Vertex;     // a shading point (integrator.cpp)
+  struct PathState;  // radiance, throughput and MIS state along a path (integrator.cpp)
   // Light sampled from a non-specular vertex (NEE), MIS-weighted in path mode.
   // (or deferred: see LiFromHit; `beta` is the path throughput to fold into it).
   SampledSpectrum directLight(const Vertex& v, const SampledWavelengths& lambda, PathRandom& rng,
@@ -85,6 +86,12 @@ class Integrator {
   SampledSpectrum liImpl(const Ray& ray0, bool didHit, const Hit& firstHit,
                          SampledWavelengths& lambda, PathRandom& rng, float* hitT,
                          ShadowRequest* deferred) const;
+  // The steps of liImpl at one vertex (integrator.cpp).
+  void addEscaped(PathState& st, const Ray& ray, const SampledWavelengths& lambda, bool path) const;
+  void addEmitted(PathState& st, const Hit& h, const Shape& s, const Material& m, bool front,
+                  const SampledWavelengths& lambda, bool path) const;
+  bool sampleBsdf(const Vertex& v, const SampledWavelengths& lambda, PathRandom& rng, PathState& st, Vec3& wi) const;
+  void scatterSpecular(const Vertex& v, SampledWavelengths& lambda, PathRandom& rng, PathState& st, Vec3& wi) const;
   SampledSpectrum sampleOneLight(int light, float pmf, const Vertex& v,
                                  const SampledWavelengths& lambda, const LightUniforms& q, bool mis,
                                  const SampledSpectrum& beta, ShadowRequest* deferred) const;
