@@ -48,12 +48,23 @@ PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& i
   panelH_ = L.panelH;
   pitch_ = L.pixelMm;
   gap_ = gapMm;
+  readDrive(L, img, file);
+  // Display x = (u - uOff) p, y = (vOff - v) p, with (u, v) continuous panel pixel coordinates.
+  uOff_ = 0.5 * L.eiaW + L.panelCol0;
+  vOff_ = 0.5 * L.eiaH + L.panelRow0;
+  placeSubpixels();
+  readPrimariesAndGlass();
+}
+
+// The drive table: the image's R, G, B (decoded when encoded, clamped to [0, 1]) on the whole
+// panel, 0 outside the EIA; or the one settings_.drive hands over.
+void PanelEmitter::readDrive(const EiLayout& L, const Image& img, const std::string& file) {
   const bool panelSized = img.width == L.panelW && img.height == L.panelH;
   const bool eiaSized = img.width == L.eiaW && img.height == L.eiaH;
   if (!panelSized && !eiaSized)
     throw InputError(file, "resolution", sizeText(img.width, img.height),
                      "the panel's resolution " + sizeText(L.panelW, L.panelH) +
-                         (panel.file.empty() ? std::string() : " (" + panel.file + ")") +
+                         (panel_.file.empty() ? std::string() : " (" + panel_.file + ")") +
                          " or the EIA area's " + sizeText(L.eiaW, L.eiaH));
   if (img.numChannels() < 3)
     throw InputError(file, "channels", std::to_string(img.numChannels()), "at least 3 channels (R, G, B drive values)");
@@ -62,8 +73,8 @@ PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& i
   for (int c = 0; c < 3; ++c) ch[c] = named ? img.channelIndex(channelName(c)) : c;
   const int x0 = panelSized ? 0 : L.panelCol0, y0 = panelSized ? 0 : L.panelRow0;
   const size_t driveSize = size_t(panelW_) * panelH_ * 3;
-  if (s.drive && s.drive->size() == driveSize) {
-    driveTable_ = s.drive;
+  if (settings_.drive && settings_.drive->size() == driveSize) {
+    driveTable_ = settings_.drive;
   } else {
     auto drive = std::make_shared<std::vector<float>>(largeVector(driveSize, 0.0f));  // read at random by every view
     for (int y = 0; y < img.height; ++y)
@@ -73,64 +84,70 @@ PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& i
           if (!std::isfinite(v))
             throw InputError(file, "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") " + channelName(c),
                              std::isnan(v) ? "NaN" : "Inf", "finite drive values");
-          if (s.encoded) v = float(panel.eotf.decode(v));
+          if (settings_.encoded) v = float(panel_.eotf.decode(v));
           (*drive)[(size_t(y0 + y) * panelW_ + (x0 + x)) * 3 + size_t(c)] = std::clamp(v, 0.0f, 1.0f);
         }
     driveTable_ = std::move(drive);
   }
   drive_ = driveTable_->data();
-  // Display x = (u - uOff) p, y = (vOff - v) p, with (u, v) continuous panel pixel coordinates.
-  uOff_ = 0.5 * L.eiaW + L.panelCol0;
-  vOff_ = 0.5 * L.eiaH + L.panelRow0;
+}
 
-  const SubpixelLayout& sl = panel.subpixels;
+// A subpixel's polygon in tile coordinates, its bounds, whether it is its own bounding box, and
+// the tile's pixel that owns it (the one holding its centroid).
+PanelEmitter::Poly PanelEmitter::makePoly(const Subpixel& sp, int tileW, int tileH) {
+  Poly p;
+  p.channel = sp.channel;
+  p.u0 = p.v0 = 1e30f;
+  p.u1 = p.v1 = -1e30f;
+  double cx = 0, cy = 0, a2 = 0;
+  for (size_t i = 0; i < sp.polygon.size(); ++i) {
+    const auto& q = sp.polygon[i];
+    const auto& r = sp.polygon[(i + 1) % sp.polygon.size()];
+    const double cr = q[0] * r[1] - r[0] * q[1];
+    a2 += cr;
+    cx += (q[0] + r[0]) * cr;
+    cy += (q[1] + r[1]) * cr;
+    p.pts.push_back({float(q[0]), float(q[1])});
+    p.u0 = std::min(p.u0, float(q[0]));
+    p.u1 = std::max(p.u1, float(q[0]));
+    p.v0 = std::min(p.v0, float(q[1]));
+    p.v1 = std::max(p.v1, float(q[1]));
+  }
+  if (a2 != 0.0) {
+    cx /= 3.0 * a2;
+    cy /= 3.0 * a2;
+  }
+  // Axis-aligned rectangle: 4 corners, every edge horizontal or vertical, area = bbox area.
+  bool axis = sp.polygon.size() == 4;
+  for (size_t i = 0; axis && i < 4; ++i) {
+    const auto& q = sp.polygon[i];
+    const auto& r = sp.polygon[(i + 1) % 4];
+    axis = q[0] == r[0] || q[1] == r[1];
+  }
+  // (The bounds are floats: compare at float precision.)
+  p.rect = axis && std::abs(0.5 * std::abs(a2) - (double(p.u1) - p.u0) * (double(p.v1) - p.v0)) <=
+                       1e-6 * std::max(1.0, 0.5 * std::abs(a2));
+  p.pixU = std::clamp(int(std::floor(cx)), 0, tileW - 1);
+  p.pixV = std::clamp(int(std::floor(cy)), 0, tileH - 1);
+  return p;
+}
+
+// The subpixel tile: each channel's area factor (tile area / its emitting area), its polygons,
+// and its one rectangle when it has a single rectangular subpixel (the fast path).
+void PanelEmitter::placeSubpixels() {
+  const SubpixelLayout& sl = panel_.subpixels;
   tileW_ = std::max(1, sl.tileW);
   tileH_ = std::max(1, sl.tileH);
   const double tileArea = double(tileW_) * tileH_;
   for (int c = 0; c < kNumPrimaries; ++c) {
     const double a = sl.emittingArea(c);
     if (!(a > 0.0))
-      throw InputError(panel.file, "subpixel_layout", std::string("no ") + channelName(c) + " subpixel",
+      throw InputError(panel_.file, "subpixel_layout", std::string("no ") + channelName(c) + " subpixel",
                        "at least one subpixel of each channel R, G, B");
     areaFactor_[size_t(c)] = tileArea / a;
   }
-  for (const auto& sp : sl.subpixels) {
-    Poly p;
-    p.channel = sp.channel;
-    p.u0 = p.v0 = 1e30f;
-    p.u1 = p.v1 = -1e30f;
-    double cx = 0, cy = 0, a2 = 0;
-    for (size_t i = 0; i < sp.polygon.size(); ++i) {
-      const auto& q = sp.polygon[i];
-      const auto& r = sp.polygon[(i + 1) % sp.polygon.size()];
-      const double cr = q[0] * r[1] - r[0] * q[1];
-      a2 += cr;
-      cx += (q[0] + r[0]) * cr;
-      cy += (q[1] + r[1]) * cr;
-      p.pts.push_back({float(q[0]), float(q[1])});
-      p.u0 = std::min(p.u0, float(q[0]));
-      p.u1 = std::max(p.u1, float(q[0]));
-      p.v0 = std::min(p.v0, float(q[1]));
-      p.v1 = std::max(p.v1, float(q[1]));
-    }
-    if (a2 != 0.0) {
-      cx /= 3.0 * a2;
-      cy /= 3.0 * a2;
-    }
-    {
-      // Axis-aligned rectangle: 4 corners, every edge horizontal or vertical, area = bbox area.
-      bool axis = sp.polygon.size() == 4;
-      for (size_t i = 0; axis && i < 4; ++i) {
-        const auto& q = sp.polygon[i];
-        const auto& r = sp.polygon[(i + 1) % 4];
-        axis = q[0] == r[0] || q[1] == r[1];
-      }
-      // (The bounds are floats: compare at float precision.)
-      p.rect = axis && std::abs(0.5 * std::abs(a2) - (double(p.u1) - p.u0) * (double(p.v1) - p.v0)) <=
-                           1e-6 * std::max(1.0, 0.5 * std::abs(a2));
-    }
-    p.pixU = std::clamp(int(std::floor(cx)), 0, tileW_ - 1);
-    p.pixV = std::clamp(int(std::floor(cy)), 0, tileH_ - 1);
+  for (const Subpixel& sp : sl.subpixels) {
+    Poly p = makePoly(sp, tileW_, tileH_);
     if (p.channel >= 0 && p.channel < kNumPrimaries) channelPolys_[size_t(p.channel)].push_back(int(polys_.size()));
     polys_.push_back(std::move(p));
   }
@@ -138,23 +155,25 @@ PanelEmitter::PanelEmitter(const Panel& panel, const EiLayout& L, const Image& i
     const std::vector<int>& own = channelPolys_[size_t(c)];
     if (own.size() == 1 && polys_[size_t(own[0])].rect) channelRect_[size_t(c)] = own[0];
   }
+}
 
-  for (int c = 0; c < kNumPrimaries; ++c) primary_[size_t(c)] = primarySpectrum(panel.primaries[size_t(c)]);
+// The primaries' spectra, the luminance scale (white = the peak luminance, or 1) and the cover
+// glass's index and thickness when it is modelled.
+void PanelEmitter::readPrimariesAndGlass() {
+  for (int c = 0; c < kNumPrimaries; ++c) primary_[size_t(c)] = primarySpectrum(panel_.primaries[size_t(c)]);
   const double yWhite = spectrumToXYZ(SumSpectrum(primary_)).y;
   if (!(yWhite > 0.0))
-    throw InputError(panel.file, "primaries", "(no visible emission)", "primaries with a non-zero luminance");
-  l0_ = (s.absolute ? panel.peakLuminanceCdM2 : 1.0) / yWhite;
-  uniformIntensity_ = panel.angularProfile == "uniform";
-
-  if (s.coverGlass && panel.coverGlass) {
-    try {
-      glassIor_ = MaterialCatalog::standard().dielectric(panel.coverGlass->material);
-    } catch (const InputError& e) {
-      throw InputError(panel.file, "cover_glass.material", "\"" + panel.coverGlass->material + "\"",
-                       "a dielectric of spectra/materials.json (" + std::string(e.what()) + ")");
-    }
-    glassT_ = panel.coverGlass->thicknessMm;
+    throw InputError(panel_.file, "primaries", "(no visible emission)", "primaries with a non-zero luminance");
+  l0_ = (settings_.absolute ? panel_.peakLuminanceCdM2 : 1.0) / yWhite;
+  uniformIntensity_ = panel_.angularProfile == "uniform";
+  if (!settings_.coverGlass || !panel_.coverGlass) return;
+  try {
+    glassIor_ = MaterialCatalog::standard().dielectric(panel_.coverGlass->material);
+  } catch (const InputError& e) {
+    throw InputError(panel_.file, "cover_glass.material", "\"" + panel_.coverGlass->material + "\"",
+                     "a dielectric of spectra/materials.json (" + std::string(e.what()) + ")");
   }
+  glassT_ = panel_.coverGlass->thicknessMm;
 }
 
 PanelEmission PanelEmitter::lookup(double x, double y) const { return lookupPx(x / pitch_ + uOff_, vOff_ - y / pitch_); }

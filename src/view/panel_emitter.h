@@ -155,6 +155,11 @@ class PanelEmitter {
     std::vector<std::array<float, 2>> pts;
     bool rect = false;       // an axis-aligned rectangle (its bounding box)
   };
+  // The constructor's steps (panel_emitter.cpp).
+  void readDrive(const EiLayout& L, const Image& img, const std::string& file);
+  static Poly makePoly(const Subpixel& sp, int tileW, int tileH);
+  void placeSubpixels();
+  void readPrimariesAndGlass();
   double polyBoxArea(const Poly& p, double u0, double v0, double u1, double v1) const;
   static constexpr int kMaxBoxTiles = 40;  // per side, for channelBoxAveragePx's stripe path
   struct SideOverlaps {
