@@ -226,6 +226,14 @@ void LensSystem::fail(int i, const std::string& column, const std::string& value
 }
 
 void LensSystem::validate() const {
+  validateSurfaces();
+  validateSpacing();
+  const double h = validateNearAxisRay();
+  validateStopFill(h);
+}
+
+// One stop; each surface's aperture, radius, conic and thickness usable on their own.
+void LensSystem::validateSurfaces() const {
   const int n = int(surfaces_.size());
   if (n == 0) throw InputError(file_, "surfaces", "(none)", "at least one surface");
   int stops = 0;
@@ -257,7 +265,11 @@ void LensSystem::validate() const {
       }
     }
   }
-  // Neighbouring surfaces must not cross inside their common aperture.
+}
+
+// Neighbouring surfaces must not cross inside their common aperture.
+void LensSystem::validateSpacing() const {
+  const int n = int(surfaces_.size());
   for (int i = 0; i + 1 < n; ++i) {
     const double r = std::min(surfaces_[size_t(i)].semiAperture(), surfaces_[size_t(i + 1)].semiAperture());
     const double zi = z_[size_t(i)] + sag(i, r);
@@ -267,7 +279,10 @@ void LensSystem::validate() const {
            "a thickness large enough that this surface and the next do not cross within their apertures "
            "(they cross by " + formatNumber(zi - zj) + " mm at height " + formatNumber(r) + " mm)");
   }
-  // A near-axis ray from an object at infinity must pass.
+}
+
+// A near-axis ray from an object at infinity must pass; returns its height.
+double LensSystem::validateNearAxisRay() const {
   double minSemi = std::numeric_limits<double>::infinity();
   for (const auto& s : surfaces_) minSemi = std::min(minSemi, s.semiAperture());
   const double h = 1e-3 * minSemi;
@@ -279,8 +294,13 @@ void LensSystem::validate() const {
                                             : formatNumber(surfaces_[size_t(tr.surface)].radiusMm),
          std::string("a lens that passes near-axis rays (a ray at height ") + formatNumber(h) + " mm is blocked here: " +
              traceStatusName(tr.status) + ")");
-  // The axial beam from infinity must be able to fill the stop: find the entrance height whose
-  // ray reaches the stop edge (apertures off), then check every other aperture on it.
+  return h;
+}
+
+// The axial beam from infinity must be able to fill the stop: find the entrance height whose ray
+// reaches the stop edge (apertures off; from the near-axis height h), then check every other
+// aperture on it.
+void LensSystem::validateStopFill(double h) const {
   const double rStop = surfaces_[size_t(stop_)].semiAperture();
   auto stopHeight = [&](double hIn, bool& ok) {
     LensRay rr{{0.0, hIn, -1.0}, {0.0, 0.0, 1.0}};

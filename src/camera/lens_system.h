@@ -126,6 +126,11 @@ class LensSystem {
 
  private:
   void rebuild();
+  // validate's steps (lens_system.cpp).
+  void validateSurfaces() const;
+  void validateSpacing() const;
+  double validateNearAxisRay() const;
+  void validateStopFill(double nearAxisHeightMm) const;
   [[noreturn]] void fail(int surface, const std::string& column, const std::string& value,
                          const std::string& expected) const;
   std::vector<LensSurface> surfaces_;
