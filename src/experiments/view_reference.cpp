@@ -83,6 +83,64 @@ std::string sibling(const std::string& out, const std::string& suffix) {
 
 void writeJsonFile(const Json& j, const std::string& path) { writeTextFile(path, j.dump(2) + "\n"); }
 
+// The metrics JSON of the view against its reference (and the band-limited reference, and by
+// depth when the reference has depth).
+Json viewMetricsJson(const ViewReferenceResult& r, const CameraSetup& cs, int referenceSpp, const BandLimit& band,
+                     bool withDepth) {
+  Json m = metricsJson(r.metrics);
+  m["pose"] = cs.pose.describe();
+  m["rot_h_deg"] = cs.pose.rotHDeg;
+  m["rot_v_deg"] = cs.pose.rotVDeg;
+  m["field"] = r.fieldPath;
+  m["reference_spp"] = referenceSpp;
+  m["eia_exposure"] = r.eiaExposure;
+  m["eia_exposure_source"] = r.eiaExposureFromHeader ? "the EIA's header" : "given";
+  m["exposure"] = r.exposure;
+  m["band_limited"] = metricsJson(r.bandLimitedMetrics);
+  m["band_limited"]["filter"] = bandLimitJson(band);
+  if (withDepth) m["depth_error"] = depthBinsJson(r.depthBins);
+  return m;
+}
+
+// What the view's budget compares with: its reference, exposed, and where it is compared.
+struct BudgetReference {
+  const ReferenceSettings& settings;  // the reference's render settings
+  const PoseImages& img;
+  const PixelMask& mask;
+  const Image& bandLimited;
+  double toCdM2 = 1.0;  // the reference's scale to the view's units before exposure
+};
+
+// The view's error budget: the noise floor's second reference (another seed, on the mask only,
+// exposed like the first) and the rungs, reusing the view's render and the rungs its pass carried.
+PoseBudget viewBudget(const ViewRunSettings& s, const ViewReferenceSettings& rs, const ReferenceInputs& in,
+                      const ViewReferenceResult& r, const BudgetReference& ref, std::optional<Image>& calibrated,
+                      const std::vector<RungPanel>& carried) {
+  const CameraSetup& cs = r.view.camera;
+  ReferenceSettings second = ref.settings;
+  second.seed = ref.settings.seed + 1;
+  second.progress = false;
+  second.depth = false;
+  second.fullSamples = &ref.mask.on;  // the floor is measured on the mask only
+  second.sppElsewhere = 0;
+  const Image secondRef = renderReference(*in.field.field, in.placement.toDisplay(), *cs.camera, cs.desc.sensor, second).image;
+  const Image secondExposed = scaledImage(secondRef, ref.toCdM2 * ref.img.exposure);
+  const Image eia = linearEia(*r.view.eia, lowerExtension(s.eiaPath) == ".png", r.view.display.panel);
+  if (in.calibration && !calibrated) calibrated = correctedEia(r.view.layout, eia, *in.calibration);
+  BudgetScene scene{&r.view.display, &r.view.layout, &eia, calibrated ? &*calibrated : nullptr, &cs.desc, s.view,
+                    r.view.gapMm};
+  scene.view.spp = rs.budgetSpp;
+  scene.view.progress = false;
+  std::vector<MadeRungView> made;
+  if (viewIsFullChain(s, rs)) made.push_back({fullChainRung(), &r.view.render.image, ""});
+  for (size_t k = 0; k < carried.size(); ++k)
+    made.push_back({carried[k].rung, &r.view.carriedViews[k], "rendered in one pass with the view"});
+  PoseBudget b = poseBudget(scene, *cs.camera, ref.img.refExposed, secondExposed, ref.img.exposure, ref.mask, in.rungs,
+                            made, &ref.bandLimited, r.view.tables);
+  b.pose = "view";
+  return b;
+}
+
 }  // namespace
 
 ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewReferenceSettings& rs,
@@ -154,42 +212,10 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
   if (depth.present) r.depthBins = errorVsDepth(img.refExposed, img.recExposed, depth, &mask, {}, &de);
   writeImage(errorMap(de, img, mask), out(sibling(s.camera.out, "_error.png")));
 
-  Json m = metricsJson(r.metrics);
-  m["pose"] = cs.pose.describe();
-  m["rot_h_deg"] = cs.pose.rotHDeg;
-  m["rot_v_deg"] = cs.pose.rotVDeg;
-  m["field"] = r.fieldPath;
-  m["reference_spp"] = rs.referenceSpp;
-  m["eia_exposure"] = r.eiaExposure;
-  m["eia_exposure_source"] = r.eiaExposureFromHeader ? "the EIA's header" : "given";
-  m["exposure"] = r.exposure;
-  m["band_limited"] = metricsJson(r.bandLimitedMetrics);
-  m["band_limited"]["filter"] = bandLimitJson(band);
-  if (depth.present) m["depth_error"] = depthBinsJson(r.depthBins);
+  const Json m = viewMetricsJson(r, cs, rs.referenceSpp, band, depth.present);
 
   if (rs.budget) {
-    // The noise floor's second reference (another seed), exposed like the first.
-    ReferenceSettings second = ref;
-    second.seed = ref.seed + 1;
-    second.progress = false;
-    second.depth = false;
-    second.fullSamples = &mask.on;  // the floor is measured on the mask only
-    second.sppElsewhere = 0;
-    const Image secondRef = renderReference(*in.field.field, in.placement.toDisplay(), *cs.camera, cs.desc.sensor, second).image;
-    const Image secondExposed = scaledImage(secondRef, refToCdM2 * img.exposure);
-    const Image eia = linearEia(*r.view.eia, lowerExtension(s.eiaPath) == ".png", r.view.display.panel);
-    if (in.calibration && !calibrated) calibrated = correctedEia(r.view.layout, eia, *in.calibration);
-    BudgetScene scene{&r.view.display, &r.view.layout, &eia, calibrated ? &*calibrated : nullptr, &cs.desc, s.view,
-                      r.view.gapMm};
-    scene.view.spp = rs.budgetSpp;
-    scene.view.progress = false;
-    std::vector<MadeRungView> made;
-    if (viewIsFullChain(s, rs)) made.push_back({fullChainRung(), &r.view.render.image, ""});
-    for (size_t k = 0; k < carried.size(); ++k)
-      made.push_back({carried[k].rung, &r.view.carriedViews[k], "rendered in one pass with the view"});
-    PoseBudget b = poseBudget(scene, *cs.camera, img.refExposed, secondExposed, img.exposure, mask, in.rungs, made,
-                              &limited, r.view.tables);
-    b.pose = "view";
+    PoseBudget b = viewBudget(s, rs, in, r, {ref, img, mask, limited, refToCdM2}, calibrated, carried);
     Json bj = Json::object();
     bj["view"] = poseBudgetJson(b);
     bj["view"]["pose"] = cs.pose.describe();
