@@ -67,6 +67,100 @@ SpectrumPtr namedIlluminant(const JsonObject& obj, const std::string& key, const
   obj.fail(key, quoteStr(name), "an illuminant name: D65, A or E");
 }
 
+// An RGB colour as the spectrum its role needs: an illuminant (emission), unbounded (generic),
+// else an albedo in [0, 1].
+SpectrumPtr rgbSpectrum(const JsonObject& obj, const std::string& key, const std::string& role) {
+  const Vec3 rgb(obj.vec3(key));
+  if (rgb.x < 0 || rgb.y < 0 || rgb.z < 0) obj.fail(key, jsonValueText(obj.raw(key)), "non-negative RGB");
+  if (role == "emission") return std::make_shared<RGBIlluminantSpectrum>(rgb);
+  if (role == "generic") return std::make_shared<RGBUnboundedSpectrum>(rgb);
+  if (rgb.x > 1 || rgb.y > 1 || rgb.z > 1) obj.fail(key, jsonValueText(obj.raw(key)), "RGB in [0, 1]");
+  return std::make_shared<RGBAlbedoSpectrum>(rgb);
+}
+
+// {"type": "gaussian", "mean_nm", "fwhm_nm", "peak" = 1, "base" = 0}: base + a Gaussian rising
+// to peak.
+SpectrumPtr gaussianSpectrum(const JsonObject& o) {
+  float mean = float(o.positive("mean_nm")), fwhm = float(o.positive("fwhm_nm"));
+  float peak = float(o.number("peak", 1.0)), base = float(o.number("base", 0.0));
+  auto g = std::make_shared<GaussianSpectrum>(mean, fwhm, peak - base);
+  if (base == 0.0f) return g;
+  struct Offset final : Spectrum {
+    SpectrumPtr g;
+    float b;
+    float operator()(float l) const override { return b + (*g)(l); }
+    float maxValue() const override { return b + g->maxValue(); }
+  };
+  auto off = std::make_shared<Offset>();
+  off->g = g;
+  off->b = base;
+  return off;
+}
+
+// {"type": "csv", "file", "column" = the first after wavelength_nm}.
+SpectrumPtr csvFileSpectrum(const JsonObject& o) {
+  std::string file = resolveFile(o, "file");
+  std::string column;
+  if (o.has("column")) {
+    column = o.string("column");
+  } else {
+    std::vector<std::string> cols;
+    try {
+      cols = csvColumns(file);
+    } catch (const InputError& e) {
+      o.fail("file", quoteStr(file), std::string("a readable spectrum CSV (") + e.what() + ")");
+    }
+    if (cols.empty()) o.fail("file", quoteStr(file), "a CSV with a data column after wavelength_nm");
+    column = cols.front();
+  }
+  try {
+    return loadSpectrumCSV(file, column);
+  } catch (const InputError& e) {
+    o.fail("file", quoteStr(file) + " column " + quoteStr(column),
+           std::string("a readable spectrum CSV (") + e.what() + ")");
+  }
+}
+
+// {"type": "table", "lambda_nm": [...], "values": [...]}: piecewise linear.
+SpectrumPtr tableSpectrum(const JsonObject& o) {
+  std::vector<double> l = o.numbers("lambda_nm"), val = o.numbers("values");
+  if (l.size() < 2 || l.size() != val.size())
+    o.fail("values", jsonValueText(o.raw("values")), "as many values as lambda_nm entries (at least 2)");
+  for (size_t i = 1; i < l.size(); ++i)
+    if (!(l[i] > l[i - 1])) o.fail("lambda_nm", jsonValueText(o.raw("lambda_nm")), "increasing wavelengths");
+  return std::make_shared<PiecewiseLinearSpectrum>(std::vector<float>(l.begin(), l.end()),
+                                                   std::vector<float>(val.begin(), val.end()));
+}
+
+// A spectrum object: {"type": ..., its parameters}; unknown keys refused.
+SpectrumPtr typedSpectrum(const JsonObject& o, const std::string& role) {
+  const std::string type = o.choice("type", {"constant", "rgb", "blackbody", "illuminant", "gaussian", "csv", "table",
+                                             "longpass", "shortpass"});
+  SpectrumPtr s;
+  if (type == "constant") {
+    s = std::make_shared<ConstantSpectrum>(float(o.number("value")));
+  } else if (type == "rgb") {
+    s = rgbSpectrum(o, "rgb", role);
+  } else if (type == "blackbody") {
+    s = std::make_shared<BlackbodySpectrum>(float(o.positive("temperature_k")));
+  } else if (type == "illuminant") {
+    s = namedIlluminant(o, "name", o.string("name"));
+  } else if (type == "gaussian") {
+    s = gaussianSpectrum(o);
+  } else if (type == "csv") {
+    s = csvFileSpectrum(o);
+  } else if (type == "table") {
+    s = tableSpectrum(o);
+  } else {  // longpass / shortpass
+    float cut = float(o.positive("cut_nm"));
+    float width = float(o.positive("width_nm", 20.0));
+    float lo = float(o.number("min", 0.0)), hi = float(o.number("max", 1.0));
+    s = std::make_shared<EdgeSpectrum>(cut, width, lo, hi, type == "longpass");
+  }
+  o.rejectUnknown();
+  return s;
+}
+
 }  // namespace
 
 SpectrumPtr parseSpectrum(const JsonObject& obj, const std::string& key, const std::string& role) {
@@ -75,90 +169,11 @@ SpectrumPtr parseSpectrum(const JsonObject& obj, const std::string& key, const s
   if (v.is_number()) {
     s = std::make_shared<ConstantSpectrum>(float(obj.number(key)));
   } else if (v.is_array()) {
-    Vec3 rgb(obj.vec3(key));
-    if (rgb.x < 0 || rgb.y < 0 || rgb.z < 0) obj.fail(key, jsonValueText(v), "non-negative RGB");
-    if (role == "emission") s = std::make_shared<RGBIlluminantSpectrum>(rgb);
-    else if (role == "generic") s = std::make_shared<RGBUnboundedSpectrum>(rgb);
-    else {
-      if (rgb.x > 1 || rgb.y > 1 || rgb.z > 1) obj.fail(key, jsonValueText(v), "RGB in [0, 1]");
-      s = std::make_shared<RGBAlbedoSpectrum>(rgb);
-    }
+    s = rgbSpectrum(obj, key, role);
   } else if (v.is_string()) {
     s = namedIlluminant(obj, key, v.get<std::string>());
   } else if (v.is_object()) {
-    JsonObject o(v, obj.file(), obj.keyPath(key));
-    std::string type = o.choice("type", {"constant", "rgb", "blackbody", "illuminant", "gaussian",
-                                         "csv", "table", "longpass", "shortpass"});
-    if (type == "constant") {
-      s = std::make_shared<ConstantSpectrum>(float(o.number("value")));
-    } else if (type == "rgb") {
-      Vec3 rgb(o.vec3("rgb"));
-      if (rgb.x < 0 || rgb.y < 0 || rgb.z < 0) o.fail("rgb", jsonValueText(o.raw("rgb")), "non-negative RGB");
-      if (role == "emission") s = std::make_shared<RGBIlluminantSpectrum>(rgb);
-      else if (role == "generic") s = std::make_shared<RGBUnboundedSpectrum>(rgb);
-      else {
-        if (rgb.x > 1 || rgb.y > 1 || rgb.z > 1) o.fail("rgb", jsonValueText(o.raw("rgb")), "RGB in [0, 1]");
-        s = std::make_shared<RGBAlbedoSpectrum>(rgb);
-      }
-    } else if (type == "blackbody") {
-      s = std::make_shared<BlackbodySpectrum>(float(o.positive("temperature_k")));
-    } else if (type == "illuminant") {
-      s = namedIlluminant(o, "name", o.string("name"));
-    } else if (type == "gaussian") {
-      float mean = float(o.positive("mean_nm")), fwhm = float(o.positive("fwhm_nm"));
-      float peak = float(o.number("peak", 1.0)), base = float(o.number("base", 0.0));
-      auto g = std::make_shared<GaussianSpectrum>(mean, fwhm, peak - base);
-      if (base != 0.0f) {
-        struct Offset final : Spectrum {
-          SpectrumPtr g;
-          float b;
-          float operator()(float l) const override { return b + (*g)(l); }
-          float maxValue() const override { return b + g->maxValue(); }
-        };
-        auto off = std::make_shared<Offset>();
-        off->g = g;
-        off->b = base;
-        s = off;
-      } else {
-        s = g;
-      }
-    } else if (type == "csv") {
-      std::string file = resolveFile(o, "file");
-      std::string column;
-      if (o.has("column")) {
-        column = o.string("column");
-      } else {
-        std::vector<std::string> cols;
-        try {
-          cols = csvColumns(file);
-        } catch (const InputError& e) {
-          o.fail("file", quoteStr(file), std::string("a readable spectrum CSV (") + e.what() + ")");
-        }
-        if (cols.empty()) o.fail("file", quoteStr(file), "a CSV with a data column after wavelength_nm");
-        column = cols.front();
-      }
-      try {
-        s = loadSpectrumCSV(file, column);
-      } catch (const InputError& e) {
-        o.fail("file", quoteStr(file) + " column " + quoteStr(column),
-               std::string("a readable spectrum CSV (") + e.what() + ")");
-      }
-    } else if (type == "table") {
-      std::vector<double> l = o.numbers("lambda_nm"), val = o.numbers("values");
-      if (l.size() < 2 || l.size() != val.size())
-        o.fail("values", jsonValueText(o.raw("values")),
-               "as many values as lambda_nm entries (at least 2)");
-      for (size_t i = 1; i < l.size(); ++i)
-        if (!(l[i] > l[i - 1])) o.fail("lambda_nm", jsonValueText(o.raw("lambda_nm")), "increasing wavelengths");
-      s = std::make_shared<PiecewiseLinearSpectrum>(std::vector<float>(l.begin(), l.end()),
-                                                    std::vector<float>(val.begin(), val.end()));
-    } else {  // longpass / shortpass
-      float cut = float(o.positive("cut_nm"));
-      float width = float(o.positive("width_nm", 20.0));
-      float lo = float(o.number("min", 0.0)), hi = float(o.number("max", 1.0));
-      s = std::make_shared<EdgeSpectrum>(cut, width, lo, hi, type == "longpass");
-    }
-    o.rejectUnknown();
+    s = typedSpectrum(JsonObject(v, obj.file(), obj.keyPath(key)), role);
   } else {
     obj.fail(key, jsonValueText(v), "a spectrum: a number, [r, g, b], an illuminant name or an object with \"type\"");
   }
