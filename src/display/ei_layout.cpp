@@ -78,6 +78,21 @@ Axis placeAxis(int count, int n, F centrePx) {
   return a;
 }
 
+// What every layout takes from the display as it is: the layout kind, the EI counts, the panel,
+// the generation gap and the lens pitch.
+EiLayout layoutFrame(const Display& d) {
+  EiLayout L;
+  L.kind = d.layout;
+  L.eiCols = d.eiCols;
+  L.eiRows = d.eiRows;
+  L.panelW = d.panel.widthPx;
+  L.panelH = d.panel.heightPx;
+  L.pixelMm = d.panel.pixelPitchMm;
+  L.gapMm = d.generationGapMm;
+  L.lensPitchMm = d.mla.pitchMm;
+  return L;
+}
+
 // Hex lattice, step 1: lens centres, EI centres (sites) and pinholes, from the lattice's centre
 // (odd rows are shifted right by half a pitch).
 void placeHexLattice(const Display& d, EiLayout& L) {
@@ -250,16 +265,8 @@ std::shared_ptr<EiPixelMap> hexPixelMap(const EiLayout& L, const std::vector<int
 
 // Hex lattice: hexagonal EIs by a Voronoi assignment of the pixel grid (ei_layout.h).
 EiLayout computeHexLayout(const Display& d) {
-  EiLayout L;
-  L.kind = d.layout;
+  EiLayout L = layoutFrame(d);
   L.lattice = Mla::Lattice::Hex;
-  L.eiCols = d.eiCols;
-  L.eiRows = d.eiRows;
-  L.panelW = d.panel.widthPx;
-  L.panelH = d.panel.heightPx;
-  L.pixelMm = d.panel.pixelPitchMm;
-  L.gapMm = d.generationGapMm;
-  L.lensPitchMm = d.mla.pitchMm;
   if (d.eiWidthPx != d.eiHeightPx)
     throw InputError(d.file, "ei_px", "[" + std::to_string(d.eiWidthPx) + ", " + std::to_string(d.eiHeightPx) + "]",
                      "one number for a hex lattice: the EI pitch along a row (flat-to-flat width) in pixels");
@@ -318,17 +325,9 @@ AreaMm EiLayout::activeArea() const {
 EiLayout computeLayout(const Display& d) {
   checkEisCanFit(d);
   if (d.mla.lattice == Mla::Lattice::Hex) return computeHexLayout(d);
-  EiLayout L;
-  L.lensPitchMm = d.mla.pitchMm;
-  L.kind = d.layout;
-  L.eiCols = d.eiCols;
-  L.eiRows = d.eiRows;
+  EiLayout L = layoutFrame(d);
   L.eiW = d.eiWidthPx;
   L.eiH = d.eiHeightPx;
-  L.panelW = d.panel.widthPx;
-  L.panelH = d.panel.heightPx;
-  L.pixelMm = d.panel.pixelPitchMm;
-  L.gapMm = d.generationGapMm;
   const double P = d.mla.pitchMm, p = L.pixelMm, g = d.generationGapMm;
   const int K = L.eiCols, R = L.eiRows;
 
