@@ -1,7 +1,6 @@
 // The figure of analysis/depth_error.h: error against depth with the MLA plane, L and the
 // depth-of-field band marked.
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -21,16 +20,20 @@ double binValue(const DepthBin& b, DepthErrorQuantity q) {
 }
 
 struct QuantityText {
-  const char* name;  // for a title
+  const char* name;   // within a figure's panel title
+  const char* title;  // a plot's own title
   const char* axis;
 };
 QuantityText quantityText(DepthErrorQuantity q) {
   switch (q) {
-    case DepthErrorQuantity::RelativeRmse: return {"relative RMSE", "relative RMSE (linear RGB)"};
-    case DepthErrorQuantity::ErrorOverDetail: return {"error / detail", "RMSE / detail (1: flat mean colour)"};
-    case DepthErrorQuantity::DeltaE2000: return {"mean CIEDE2000", "mean ΔE2000"};
+    case DepthErrorQuantity::RelativeRmse:
+      return {"relative RMSE", "Relative RMSE against depth", "relative RMSE (linear RGB)"};
+    case DepthErrorQuantity::ErrorOverDetail:
+      return {"error / detail", "Error / detail against depth", "RMSE / detail (1: flat mean colour)"};
+    case DepthErrorQuantity::DeltaE2000:
+      return {"mean CIEDE2000", "Mean CIEDE2000 against depth", "mean ΔE2000"};
   }
-  return {"", ""};
+  return {"", "", ""};
 }
 
 // The x range: every bin and the marked planes, a little padding on both sides.
@@ -95,8 +98,7 @@ Plot depthErrorPlot(const std::vector<DepthErrorCurve>& curves, const DepthMarks
   p.width = 900;
   p.height = 420;
   const QuantityText text = quantityText(q);
-  p.title = std::string(text.name) + " against depth";
-  p.title[0] = char(std::toupper(static_cast<unsigned char>(p.title[0])));
+  p.title = text.title;
   p.x.title = "scene depth z (mm, display frame; > 0 toward the viewer)";
   p.y.title = text.axis;
   const auto [zLo, zHi] = zRange(curves, marks);

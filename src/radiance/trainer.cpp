@@ -169,7 +169,11 @@ bool occupiedBox(const VoxelGrid& g, float alpha, int margin, Point3& lo, Point3
 class TrainingLoop {
  public:
   TrainingLoop(VoxelGrid& grid, const TrainingRays& rays, const TrainConfig& cfg)
-      : grid_(grid), rays_(rays), cfg_(cfg), numChunks_((cfg.batchSize + kChunkRays - 1) / kChunkRays) {
+      : grid_(grid),
+        rays_(rays),
+        cfg_(cfg),
+        numChunks_((cfg.batchSize + kChunkRays - 1) / kChunkRays),
+        lossWeight_(1.0f / (3.0f * float(cfg.batchSize))) {
     grid_ = VoxelGrid::create(cfg.boxLo, cfg.boxHi, VoxelGrid::resolutionFor(cfg.boxLo, cfg.boxHi, cfg.resolutions[0]),
                               cfg.shDegree, cfg.activation, cfg.background, cfg.initAlpha);
     opt_.reset(grid_);
@@ -191,11 +195,9 @@ class TrainingLoop {
     }
     if (it % cfg_.occupancyInterval == 0 || occ_.cellRes() != grid_.res - 1)
       occ_.update(grid_, cfg_.march.stepWorld(grid_), cfg_.march.occupancyAlpha);
-    slabs_ = opt_.slabs;
-    buckets_.resize(size_t(numChunks_) * size_t(slabs_));
-    touched_.resize(size_t(slabs_));
+    buckets_.resize(size_t(numChunks_) * size_t(opt_.slabs));
+    touched_.resize(size_t(opt_.slabs));
     step_ = cfg_.march.stepWorld(grid_);
-    lossWeight_ = 1.0f / (3.0f * float(cfg_.batchSize));
   }
 
   // 1. Forward + backward per chunk; records go to per-(chunk, slab) buckets.
@@ -207,7 +209,7 @@ class TrainingLoop {
 
   // 2. Ordered scatter per slab, then TV on the touched vertices.
   void scatterAndTv(int it) {
-    tbb::parallel_for(tbb::blocked_range<int>(0, slabs_, 1), [&](const tbb::blocked_range<int>& r) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, opt_.slabs, 1), [&](const tbb::blocked_range<int>& r) {
       for (int s = r.begin(); s < r.end(); ++s) scatterSlab(it, s);
     });
   }
@@ -216,7 +218,7 @@ class TrainingLoop {
   void adamStep(int it) {
     opt_.step++;
     const float decay = std::pow(cfg_.lrFinalFactor, float(it) / float(std::max(1, cfg_.iterations)));
-    tbb::parallel_for(tbb::blocked_range<int>(0, slabs_, 1), [&](const tbb::blocked_range<int>& r) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, opt_.slabs, 1), [&](const tbb::blocked_range<int>& r) {
       for (int s = r.begin(); s < r.end(); ++s) {
         const auto& list = touched_[size_t(s)];
         opt_.adamDensity.update(list, grid_.density.data(), opt_.gradDensity.data(), cfg_.lrDensity * decay,
@@ -243,7 +245,7 @@ class TrainingLoop {
     ch.sqError = 0.0;
     ch.samples = 0;
     ch.sh.resize(size_t(kChunkRays) * kMaxShCount);
-    for (int s = 0; s < slabs_; ++s) buckets_[size_t(c) * slabs_ + s].clear();
+    for (int s = 0; s < opt_.slabs; ++s) buckets_[size_t(c) * opt_.slabs + s].clear();
     const size_t sx = size_t(grid_.res.y) * size_t(grid_.res.z), numRays = rays_.size();
     const int k0 = c * kChunkRays, k1 = std::min(cfg_.batchSize, k0 + kChunkRays);
     for (int k = k0; k < k1; ++k) {
@@ -269,8 +271,8 @@ class TrainingLoop {
       for (const SampleGrad& sg : ch.grads) {
         size_t x0 = sg.base / sx;
         int s0 = opt_.slabOfX[x0], s1 = opt_.slabOfX[x0 + 1];
-        buckets_[size_t(c) * slabs_ + s0].push_back({sg, uint32_t(k - k0)});
-        if (s1 != s0) buckets_[size_t(c) * slabs_ + s1].push_back({sg, uint32_t(k - k0)});
+        buckets_[size_t(c) * opt_.slabs + s0].push_back({sg, uint32_t(k - k0)});
+        if (s1 != s0) buckets_[size_t(c) * opt_.slabs + s1].push_back({sg, uint32_t(k - k0)});
       }
     }
   }
@@ -280,7 +282,7 @@ class TrainingLoop {
     list.clear();
     for (int c = 0; c < numChunks_; ++c) {
       const float* shBase = chunks_[size_t(c)].sh.data();
-      for (const SlabRecord& rec : buckets_[size_t(c) * slabs_ + s]) {
+      for (const SlabRecord& rec : buckets_[size_t(c) * opt_.slabs + s]) {
         const float* sh = shBase + size_t(rec.ray) * kMaxShCount;
         switch (grid_.shDegree) {
           case 0: scatter<0>(rec, sh, s, grid_, opt_, list); break;
@@ -299,14 +301,14 @@ class TrainingLoop {
   const TrainingRays& rays_;
   const TrainConfig& cfg_;
   const int numChunks_;
+  const float lossWeight_;  // the loss is the mean over the batch's 3 channels
   Optimiser opt_;
   OccupancyGrid occ_;
   std::vector<Chunk> chunks_;
   std::vector<std::vector<SlabRecord>> buckets_;
   std::vector<std::vector<uint32_t>> touched_;
   size_t stage_ = 0;
-  int slabs_ = 1;
-  float step_ = 0.0f, lossWeight_ = 0.0f;
+  float step_ = 0.0f;  // the march step of the current grid
 };
 
 }  // namespace
