@@ -130,6 +130,43 @@ std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstr
   return bins;
 }
 
+namespace {
+
+// The same bins: equal z ranges (to rounding) and equal pixel counts.
+bool sameBins(const std::vector<DepthBin>& a, const std::vector<DepthBin>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t k = 0; k < a.size(); ++k) {
+    const double tol = 1e-9 * std::max({1.0, std::abs(a[k].zLo), std::abs(a[k].zHi)});
+    if (std::abs(a[k].zLo - b[k].zLo) > tol || std::abs(a[k].zHi - b[k].zHi) > tol || a[k].pixels != b[k].pixels)
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> errorRelativeToLowest(const std::vector<std::vector<DepthBin>>& curves) {
+  for (size_t i = 1; i < curves.size(); ++i)
+    if (!sameBins(curves.front(), curves[i]))
+      throw InputError("", "depth_bins", "curve " + std::to_string(i) + "'s bins",
+                       "the same z ranges and pixels as curve 0's (one reference and mask)");
+  std::vector<std::vector<double>> out(curves.size());
+  if (curves.empty()) return out;
+  for (size_t k = 0; k < curves.front().size(); ++k) {
+    // Over the same pixels of the same reference, relative RMSEs are in the ratio of the RMSEs.
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const auto& c : curves)
+      if (std::isfinite(c[k].relRmse)) lowest = std::min(lowest, c[k].relRmse);
+    for (size_t i = 0; i < curves.size(); ++i) {
+      const double v = curves[i][k].relRmse;
+      double r = kNaN;
+      if (std::isfinite(v)) r = lowest > 0.0 ? v / lowest : (v == 0.0 ? 1.0 : std::numeric_limits<double>::infinity());
+      out[i].push_back(r);
+    }
+  }
+  return out;
+}
+
 Json depthBinsJson(const std::vector<DepthBin>& bins) {
   auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
   Json a = Json::array();

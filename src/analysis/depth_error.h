@@ -71,6 +71,15 @@ std::vector<DepthBin> errorVsDepth(const Image& reference, const Image& reconstr
                                    const PixelMask* mask, const DepthBinning& b = {},
                                    const std::vector<float>* deltaE = nullptr);
 
+// Designs compared depth by depth: each curve's error in each bin over the lowest any curve
+// reaches in that bin (RMSE_i / min_j RMSE_j; 1 for the best design at that depth). The curves
+// must be of the same reference and mask (the same bins and pixels: a gap sweep of one scene
+// seen from one pose), so the ratio cancels what each bin holds: a fine texture at one depth and
+// a smooth backdrop at another no longer decide the shape of the curve; only how the designs
+// differ there does. NaN where the curve's bin has no metric; where the lowest is 0, 1 for the
+// curves at 0 and infinity for the rest. InputError (key depth_bins) when the curves' bins differ.
+std::vector<std::vector<double>> errorRelativeToLowest(const std::vector<std::vector<DepthBin>>& curves);
+
 // [{z_lo, z_hi, pixels, mixed_pixels, rel_rmse, de2000_mean, error_over_detail}, ...]; NaN
 // metrics as null.
 Json depthBinsJson(const std::vector<DepthBin>& bins);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "analysis/depth_error.h"
 #include "analysis/metrics.h"
@@ -260,6 +261,57 @@ TEST(DepthError, JsonAndCsvCarryEveryBinWithNaNAsNull) {
   EXPECT_EQ(j[1]["error_over_detail"].get<double>(), 0.5);
   bins[2].mixedPixels = 7;
   EXPECT_EQ(depthBinsJson(bins)[2]["mixed_pixels"].get<int64_t>(), 7);
+}
+
+// Two designs of known error, rec = ref + e(z) on every channel: A sharp at z = 10 (e = 0.01
+// |z - 10|), B at z = -10. Relative to the lower of the two, A's error is |z - 10| / |z + 10| where
+// B is better and 1 where A is, whatever the reference shows: on a reference whose brightness
+// changes from depth to depth, each design's relative RMSE changes shape, the ratio does not.
+TEST(DepthError, ErrorRelativeToTheLowestDesignCancelsWhatEachDepthHolds) {
+  for (double contrast : {0.0, 0.8}) {
+    Synthetic s = linearError(23, 0.0);
+    Image recA = s.ref, recB = s.ref;
+    for (int y = 0; y < s.ref.height; ++y)
+      for (int x = 0; x < s.ref.width; ++x) {
+        const double z = s.z[size_t(x)], content = 1.0 + contrast * std::sin(0.7 * x);
+        for (int ch = 0; ch < 3; ++ch) {
+          s.ref.at(x, y, ch) = float(s.ref.at(x, y, ch) * content);
+          recA.at(x, y, ch) = s.ref.at(x, y, ch) + float(0.01 * std::abs(z - 10.0));
+          recB.at(x, y, ch) = s.ref.at(x, y, ch) + float(0.01 * std::abs(z + 10.0));
+        }
+      }
+    const DepthMap depth{s.z, s.a, {}};
+    const auto a = errorVsDepth(s.ref, recA, depth, nullptr, fixedBins());
+    const auto b = errorVsDepth(s.ref, recB, depth, nullptr, fixedBins());
+    const auto rel = errorRelativeToLowest({a, b});
+    ASSERT_EQ(rel.size(), 2u);
+    ASSERT_EQ(rel[0].size(), 24u);
+    for (size_t k = 0; k < 24; ++k) {
+      const double z = a[k].zCentre, ea = std::abs(z - 10.0), eb = std::abs(z + 10.0);
+      EXPECT_NEAR(rel[0][k], std::max(1.0, ea / eb), 1e-4) << "z " << z << " contrast " << contrast;
+      EXPECT_NEAR(rel[1][k], std::max(1.0, eb / ea), 1e-4) << "z " << z << " contrast " << contrast;
+    }
+  }
+}
+
+TEST(DepthError, ErrorRelativeToTheLowestNeedsTheSameBins) {
+  const Synthetic s = linearError(23, 0.01);
+  const auto a = errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, fixedBins());
+  DepthBinning shifted = fixedBins();
+  shifted.minZ = -23.0;
+  const auto b = errorVsDepth(s.ref, s.rec, {s.z, s.a, {}}, nullptr, shifted);
+  EXPECT_EQ(expectInputError([&] { (void)errorRelativeToLowest({a, b}); }).key(), "depth_bins");
+  std::vector<DepthBin> fewer = a;
+  fewer[3].pixels -= 1;
+  EXPECT_EQ(expectInputError([&] { (void)errorRelativeToLowest({a, fewer}); }).key(), "depth_bins");
+  // A bin without a metric stays NaN; the one design left there is the lowest.
+  std::vector<DepthBin> gap = a;
+  gap[5].relRmse = std::numeric_limits<double>::quiet_NaN();
+  const auto rel = errorRelativeToLowest({a, gap});
+  EXPECT_TRUE(std::isnan(rel[1][5]));
+  EXPECT_DOUBLE_EQ(rel[0][5], 1.0);
+  EXPECT_DOUBLE_EQ(rel[0][2], 1.0);
+  EXPECT_DOUBLE_EQ(rel[1][2], 1.0);
 }
 
 TEST(DepthErrorPlot, MarksTheMlaPlaneLAndTheDepthOfFieldBand) {
