@@ -4,13 +4,16 @@
 // the paraxial predictions (the viewing angle psi and the reference image plane L, both through
 // the cover glass). Two scenes: the default one (what the question is about) and a depth ramp
 // (scenes/test/depth-ramp.json: the same texture at every depth, which separates the effect of
-// depth from that of content), the ramp also under the toed-in layout for the camera's distance
-// (whose lateral scale is 1 at every depth, unlike the paper's parallel layout).
+// depth from that of content), both also under the toed-in layout for the camera's distance
+// (whose lateral scale is 1 at every depth, unlike the paper's parallel layout). On the default
+// scene, where each depth holds its own object, the depths are also compared across the gaps
+// (each bin's error over the lowest any gap reaches there), which cancels the content.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 
+#include "analysis/depth_error.h"
 #include "analysis/plot.h"
 #include "core/format.h"
 #include "core/output_file.h"
@@ -128,6 +131,44 @@ double nearOverFar(const GapRun& r, double near, double far) {
   return na && nb ? (a / na) / (b / nb) : NAN;
 }
 
+// Each depth compared across the gaps: every run's bins over the lowest any run reaches there
+// (analysis/depth_error.h). Every gap sees the same reference through the same mask, so what each
+// bin holds cancels and the ratio is the gap's doing.
+std::vector<std::vector<double>> relativeToBestGap(const std::vector<GapRun>& runs) {
+  std::vector<std::vector<DepthBin>> curves;
+  for (const GapRun& r : runs) curves.push_back(r.bins);
+  return errorRelativeToLowest(curves);
+}
+
+// The relative error within kNearLMm of L, and in front of the MLA plane farther than kFarLMm from
+// L (the depths the lenslets' focus should serve worse); NaN unless L lies in front of the MLA
+// plane within the scene's depth range, or when a side is empty.
+constexpr double kNearLMm = 5.0, kFarLMm = 10.0;
+struct NearFar {
+  double near = NAN, far = NAN;
+  double ratio() const { return near / far; }
+};
+NearFar nearAndFarInFront(const GapRun& r, const std::vector<double>& rel) {
+  if (!r.lMm || *r.lMm <= 0.0 || r.bins.empty() || *r.lMm > r.bins.back().zHi) return {};
+  double a = 0, b = 0;
+  int na = 0, nb = 0;
+  for (size_t k = 0; k < r.bins.size() && k < rel.size(); ++k) {
+    if (!std::isfinite(rel[k])) continue;
+    const double d = std::abs(r.bins[k].zCentre - *r.lMm);
+    if (d <= kNearLMm) a += rel[k], ++na;
+    if (d > kFarLMm && r.bins[k].zHi > 0.0) b += rel[k], ++nb;
+  }
+  return na && nb ? NearFar{a / na, b / nb} : NearFar{};
+}
+
+// The depth of the lowest error / detail at 0° (one gap's own curve, content included).
+double depthOfLowestErrorOverDetail(const std::vector<DepthBin>& bins) {
+  double best = std::numeric_limits<double>::infinity(), z = NAN;
+  for (const DepthBin& b : bins)
+    if (std::isfinite(b.errorOverDetail) && b.errorOverDetail < best) best = b.errorOverDetail, z = b.zCentre;
+  return z;
+}
+
 Plot rungPlot(const std::vector<GapRun>& runs, const std::string& sceneName) {
   Plot p;
   p.title = "Error budget at 0° against the gap: " + sceneName;
@@ -166,6 +207,38 @@ Plot depthPlot(const std::vector<GapRun>& runs, const std::string& sceneName, bo
   p.markers.push_back({0.0, "MLA", Vec3(0.0f), 0.0});
   p.y.min = 0.0;
   return p;
+}
+
+Plot relativeDepthPlot(const std::vector<GapRun>& runs, const std::vector<std::vector<double>>& rel,
+                       const std::string& sceneName) {
+  Plot p;
+  p.title = "Each depth across the gaps at 0°: " + sceneName + " (dashed: L of the same colour)";
+  p.x.title = "scene depth z (mm, display frame; > 0 toward the viewer)";
+  p.y.title = "RMSE over the lowest of the gaps at that depth";
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const GapRun& r = runs[i];
+    PlotSeries s{"g = " + fixed(r.gapMm, 2) + " mm", {}, {}};
+    s.color = plotPalette(int(i));
+    for (size_t k = 0; k < r.bins.size(); ++k) s.x.push_back(r.bins[k].zCentre), s.y.push_back(rel[i][k]);
+    p.series.push_back(s);
+    if (r.lMm && std::abs(*r.lMm) < 80.0) p.markers.push_back({*r.lMm, "", plotPalette(int(i)), 5.0});
+  }
+  p.markers.push_back({0.0, "MLA", Vec3(0.0f), 0.0});
+  p.y.min = 1.0;
+  return p;
+}
+
+std::string nearFarTable(const std::vector<GapRun>& runs, const std::vector<std::vector<double>>& rel) {
+  std::string t = "| g (mm) | L (mm) | depth of the lowest error / detail, own curve (mm) | each depth over the best "
+                  "gap: within " + fixed(kNearLMm, 0) + " mm of L | in front, farther than " + fixed(kFarLMm, 0) +
+                  " mm from L | near / far |\n|---|---|---|---|---|---|\n";
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const NearFar nf = nearAndFarInFront(runs[i], rel[i]);
+    t += "| " + fixed(runs[i].gapMm, 2) + " | " + lText(runs[i]) + " | " +
+         fixedOrDash(depthOfLowestErrorOverDetail(runs[i].bins), 1) + " | " + fixedOrDash(nf.near, 2) + " | " +
+         fixedOrDash(nf.far, 2) + " | " + fixedOrDash(nf.ratio(), 2) + " |\n";
+  }
+  return t + "\n";
 }
 
 std::string gapTable(const std::vector<GapRun>& runs) {
@@ -243,6 +316,48 @@ std::string toedInText(const std::vector<GapRun>& parallel, const std::vector<Ga
              "the lenslets' focus at 350 mm.\n\n";
 }
 
+// The default scene's depths compared across the gaps, under both layouts.
+std::string acrossGapsText(const std::vector<GapRun>& parallel, const std::vector<std::vector<double>>& relParallel,
+                           const std::vector<GapRun>& toedIn, const std::vector<std::vector<double>>& relToedIn) {
+  std::string own;
+  for (const GapRun& r : toedIn)
+    own += (own.empty() ? "" : ", ") + fixedOrDash(depthOfLowestErrorOverDetail(r.bins), 1) + " mm at g = " +
+           fixed(r.gapMm, 2) + " (L " + lText(r) + ")";
+  // Among the gaps whose L lies in front within the scene: where near / far is below 1.
+  struct Split {
+    std::string below, notBelow;
+    std::string text() const {
+      if (notBelow.empty()) return "at every one of them (g = " + below + " mm)";
+      if (below.empty()) return "at none of them (g = " + notBelow + " mm)";
+      return "at g = " + below + " mm but not at g = " + notBelow + " mm";
+    }
+  };
+  auto split = [](const std::vector<GapRun>& runs, const std::vector<std::vector<double>>& rel) {
+    Split sp;
+    for (size_t i = 0; i < runs.size(); ++i) {
+      const double q = nearAndFarInFront(runs[i], rel[i]).ratio();
+      if (!std::isfinite(q)) continue;
+      std::string& l = q < 1.0 ? sp.below : sp.notBelow;
+      l += (l.empty() ? "" : ", ") + fixed(runs[i].gapMm, 2);
+    }
+    return sp;
+  };
+  const Split toed = split(toedIn, relToedIn), par = split(parallel, relParallel);
+  return "Each depth of the default scene holds an object of its own (the printed target on the MLA plane has the "
+         "finest detail), so one gap's curve mixes the optics with what lies where. Under the toed-in layout the "
+         "depth of the lowest error / detail is " + own + ": it does not follow L. Compared depth by depth across the "
+         "gaps instead (each bin's RMSE over the lowest any gap reaches there: every gap sees the same reference "
+         "through the same mask, so what a depth holds cancels; depth_relative_default_toed_in.png), the error within " +
+         fixed(kNearLMm, 0) + " mm of L is below that farther than " + fixed(kFarLMm, 0) + " mm from it in front of "
+         "the MLA plane, among the gaps whose L lies in front within the scene, " + toed.text() + ":\n\n" +
+         nearFarTable(toedIn, relToedIn) + "Under the paper's parallel layout (depth_relative_default.png) it is " +
+         par.text() + ":\n\n" + nearFarTable(parallel, relParallel) +
+         (toed.notBelow.empty() && !par.notBelow.empty()
+              ? "So on the default scene too, the lenslets' focus shows where the layout rebuilds each depth in place; "
+                "the parallel layout's depth-dependent scale hides it.\n\n"
+              : std::string());
+}
+
 }  // namespace
 
 StudyReport runGapTradeoff(const StudyOptions& o) {
@@ -257,7 +372,8 @@ StudyReport runGapTradeoff(const StudyOptions& o) {
   const std::string ramp = dataPath("scenes/test/depth-ramp.json");
   std::vector<SceneRuns> scenes = {{"default scene", "default", defaultScenePath(), false, {}},
                                    {"depth ramp", "ramp", ramp, false, {}},
-                                   {"depth ramp, toed-in layout", "ramp_toed_in", ramp, true, {}}};
+                                   {"depth ramp, toed-in layout", "ramp_toed_in", ramp, true, {}},
+                                   {"default scene, toed-in layout", "default_toed_in", defaultScenePath(), true, {}}};
   for (SceneRuns& sc : scenes)
     for (double g : gapsOf(o)) sc.runs.push_back(runGap(o, sd.display, sc.file, g, sc.toedIn, scratch));
   std::error_code ec;
@@ -269,10 +385,21 @@ StudyReport runGapTradeoff(const StudyOptions& o) {
       values.push_back(bound(sc.name + ", g = " + fixed(r.gapMm, 2) + ": ideal display - full chain, at 0°",
                              r.rungDe.front() - r.rungDe.back(), r.floorDe, false));
   // Where L lies inside the ramp, the toed-in display's error is lowest near it.
-  for (const GapRun& r : scenes.back().runs)
+  for (const GapRun& r : scenes[2].runs)
     if (r.lMm && std::abs(*r.lMm) < 35.0)
       values.push_back(bound("depth ramp, toed-in, g = " + fixed(r.gapMm, 2) + ": error within 8 mm of L / beyond 25 mm",
                              nearOverFar(r, 8.0, 25.0), 1.0, false));
+  // On the default scene, depth by depth across the gaps, where L lies in front within the scene.
+  std::vector<std::vector<std::vector<double>>> rel;
+  for (const SceneRuns& sc : scenes) rel.push_back(relativeToBestGap(sc.runs));
+  for (size_t i = 0; i < scenes[3].runs.size(); ++i) {
+    const double q = nearAndFarInFront(scenes[3].runs[i], rel[3][i]).ratio();
+    if (std::isfinite(q))
+      values.push_back(bound("default scene, toed-in, g = " + fixed(scenes[3].runs[i].gapMm, 2) +
+                                 ": each depth over the best gap, within " + fixed(kNearLMm, 0) + " mm of L / in front, farther than " +
+                                 fixed(kFarLMm, 0) + " mm",
+                             q, 1.0, false));
+  }
   w.section("What", "Which gap g between the panel and the MLA makes the reconstruction best, and why: g swept "
                     "around the lenslets' focal length f = 3.3 mm on " + sd.path + ", the EIA made for each gap "
                     "(generation gap = reconstruction gap = g), seen as in Fig. 11 (inim fig11 with its error "
@@ -287,28 +414,40 @@ StudyReport runGapTradeoff(const StudyOptions& o) {
                           "chain = the full chain), the noise floor (the reference against another seed's), the "
                           "metrics against the band-limited reference (what an ideal display of this lenslet pitch "
                           "can show; analysis/band_limit.h), and the error against depth at 0°, for the default scene "
-                          "and for a depth ramp (the same colour checker from z = +41 to -41 mm).");
-  for (const SceneRuns& sc : scenes) {
+                          "and for a depth ramp (the same colour checker from z = +41 to -41 mm), each under the "
+                          "paper's parallel layout and the toed-in one. Each depth is also compared across the gaps: "
+                          "its RMSE over the lowest any gap reaches there (the same reference and pixels at every "
+                          "gap, so what the depth holds cancels).");
+  for (size_t si = 0; si < scenes.size(); ++si) {
+    const SceneRuns& sc = scenes[si];
     const std::string& stem = sc.stem;
     w.text("## " + sc.name + "\n\n" + gapTable(sc.runs));
     w.plot("rungs_" + stem + ".png", rungPlot(sc.runs, sc.name));
     w.plot("depth_" + stem + ".png", depthPlot(sc.runs, sc.name, false));
     w.plot("depth_band_limited_" + stem + ".png", depthPlot(sc.runs, sc.name, true));
+    w.plot("depth_relative_" + stem + ".png", relativeDepthPlot(sc.runs, rel[si], sc.name));
     std::vector<std::vector<std::string>> rows;
-    for (const GapRun& r : sc.runs)
+    for (size_t g = 0; g < sc.runs.size(); ++g) {
+      const GapRun& r = sc.runs[g];
       for (size_t i = 0; i < r.bins.size(); ++i)
         rows.push_back({fixed(r.gapMm, 2), fixed(r.bins[i].zCentre, 3), std::to_string(r.bins[i].pixels),
                         fixedOrDash(r.bins[i].de2000Mean, 4),
-                        i < r.binsBandLimited.size() ? fixedOrDash(r.binsBandLimited[i].de2000Mean, 4) : "–"});
-    w.csv("depth_" + stem + ".csv", {"gap_mm", "z_centre_mm", "pixels", "de2000_mean", "de2000_mean_band_limited"}, rows);
+                        i < r.binsBandLimited.size() ? fixedOrDash(r.binsBandLimited[i].de2000Mean, 4) : "–",
+                        fixedOrDash(r.bins[i].errorOverDetail, 4), fixedOrDash(rel[si][g][i], 4)});
+    }
+    w.csv("depth_" + stem + ".csv", {"gap_mm", "z_centre_mm", "pixels", "de2000_mean", "de2000_mean_band_limited",
+                                     "error_over_detail", "rmse_over_lowest_gap"}, rows);
     w.text("![rungs](rungs_" + stem + ".png)\n\n![depth](depth_" + stem + ".png)\n\n![depth, band-limited](depth_band_limited_" +
-           stem + ".png)\n\n");
+           stem + ".png)\n\n![each depth across the gaps](depth_relative_" + stem + ".png)\n\n");
   }
-  w.section("Discussion", whyText(scenes[0].runs, scenes[1].runs, 7.0) + toedInText(scenes[1].runs, scenes[2].runs));
+  w.section("Discussion", whyText(scenes[0].runs, scenes[1].runs, 7.0) + toedInText(scenes[1].runs, scenes[2].runs) +
+                              acrossGapsText(scenes[0].runs, rel[0], scenes[3].runs, rel[3]));
   w.text("**Result.**\n\n" + boundsTable(values) + "\n");
   w.verdict("at every gap and on every scene, the ideal display is no worse than the full chain beyond the noise "
             "floor (ideal - full <= floor, mean CIEDE2000 at 0°); on the ramp with the toed-in layout, wherever L "
-            "lies inside it, the error within 8 mm of L is below the error farther than 25 mm from it",
+            "lies inside it, the error within 8 mm of L is below the error farther than 25 mm from it; on the default "
+            "scene with the toed-in layout, wherever L lies in front within the scene, each depth's error over the "
+            "best gap's is lower within 5 mm of L than in front of the MLA plane farther than 10 mm from it",
             values);
   StudyReport report = makeReport("gap-tradeoff", values);
   report.files = w.commit();
