@@ -108,11 +108,12 @@ GapRun runGap(const StudyOptions& o, const Display& base, const std::string& sce
 
 std::string lText(const GapRun& r) { return r.lMm ? fixed(*r.lMm, 1) : std::string("∞"); }
 
-// The depth of the lowest error among the bins with enough pixels; NaN when none.
-double depthOfLowest(const std::vector<DepthBin>& bins) {
+// The depth of the bin with the lowest `metric` (mean CIEDE2000 unless given) among those with
+// enough pixels; NaN when none.
+double depthOfLowest(const std::vector<DepthBin>& bins, double DepthBin::*metric = &DepthBin::de2000Mean) {
   double best = std::numeric_limits<double>::infinity(), z = NAN;
   for (const DepthBin& b : bins)
-    if (std::isfinite(b.de2000Mean) && b.de2000Mean < best) best = b.de2000Mean, z = b.zCentre;
+    if (std::isfinite(b.*metric) && b.*metric < best) best = b.*metric, z = b.zCentre;
   return z;
 }
 
@@ -161,14 +162,6 @@ NearFar nearAndFarInFront(const GapRun& r, const std::vector<double>& rel) {
   return na && nb ? NearFar{a / na, b / nb} : NearFar{};
 }
 
-// The depth of the lowest error / detail at 0° (one gap's own curve, content included).
-double depthOfLowestErrorOverDetail(const std::vector<DepthBin>& bins) {
-  double best = std::numeric_limits<double>::infinity(), z = NAN;
-  for (const DepthBin& b : bins)
-    if (std::isfinite(b.errorOverDetail) && b.errorOverDetail < best) best = b.errorOverDetail, z = b.zCentre;
-  return z;
-}
-
 Plot rungPlot(const std::vector<GapRun>& runs, const std::string& sceneName) {
   Plot p;
   p.title = "Error budget at 0° against the gap: " + sceneName;
@@ -189,43 +182,42 @@ Plot rungPlot(const std::vector<GapRun>& runs, const std::string& sceneName) {
   return p;
 }
 
-Plot depthPlot(const std::vector<GapRun>& runs, const std::string& sceneName, bool bandLimited) {
+// A curve per gap against depth at 0°, `value(i, k)` for run i's bin k (NaN, too few pixels,
+// breaks the line), each gap's L dashed in its colour, the MLA plane marked.
+template <class Value>
+Plot gapDepthPlot(const std::vector<GapRun>& runs, const std::string& title, const std::string& yTitle, double yMin,
+                  Value value) {
   Plot p;
-  p.title = std::string("Error against depth at 0°, ") + (bandLimited ? "against the band-limited reference" : "against the reference") +
-            ": " + sceneName + " (dashed: L of the same colour)";
+  p.title = title + " (dashed: L of the same colour)";
   p.x.title = "scene depth z (mm, display frame; > 0 toward the viewer)";
-  p.y.title = "mean CIEDE2000";
+  p.y.title = yTitle;
   for (size_t i = 0; i < runs.size(); ++i) {
     const GapRun& r = runs[i];
     PlotSeries s{"g = " + fixed(r.gapMm, 2) + " mm", {}, {}};
     s.color = plotPalette(int(i));
-    for (const DepthBin& b : bandLimited ? r.binsBandLimited : r.bins)  // NaN (too few pixels) breaks the line
-      s.x.push_back(b.zCentre), s.y.push_back(b.de2000Mean);
+    for (size_t k = 0; k < r.bins.size(); ++k) s.x.push_back(r.bins[k].zCentre), s.y.push_back(value(i, k));
     p.series.push_back(s);
     if (r.lMm && std::abs(*r.lMm) < 80.0) p.markers.push_back({*r.lMm, "", plotPalette(int(i)), 5.0});
   }
   p.markers.push_back({0.0, "MLA", Vec3(0.0f), 0.0});
-  p.y.min = 0.0;
+  p.y.min = yMin;
   return p;
+}
+
+Plot depthPlot(const std::vector<GapRun>& runs, const std::string& sceneName, bool bandLimited) {
+  const std::string title = std::string("Error against depth at 0°, ") +
+                            (bandLimited ? "against the band-limited reference" : "against the reference") + ": " + sceneName;
+  // Both binnings are of the same depth map and mask: the same bins.
+  return gapDepthPlot(runs, title, "mean CIEDE2000", 0.0, [&](size_t i, size_t k) {
+    const std::vector<DepthBin>& bins = bandLimited ? runs[i].binsBandLimited : runs[i].bins;
+    return k < bins.size() ? bins[k].de2000Mean : NAN;
+  });
 }
 
 Plot relativeDepthPlot(const std::vector<GapRun>& runs, const std::vector<std::vector<double>>& rel,
                        const std::string& sceneName) {
-  Plot p;
-  p.title = "Each depth across the gaps at 0°: " + sceneName + " (dashed: L of the same colour)";
-  p.x.title = "scene depth z (mm, display frame; > 0 toward the viewer)";
-  p.y.title = "RMSE over the lowest of the gaps at that depth";
-  for (size_t i = 0; i < runs.size(); ++i) {
-    const GapRun& r = runs[i];
-    PlotSeries s{"g = " + fixed(r.gapMm, 2) + " mm", {}, {}};
-    s.color = plotPalette(int(i));
-    for (size_t k = 0; k < r.bins.size(); ++k) s.x.push_back(r.bins[k].zCentre), s.y.push_back(rel[i][k]);
-    p.series.push_back(s);
-    if (r.lMm && std::abs(*r.lMm) < 80.0) p.markers.push_back({*r.lMm, "", plotPalette(int(i)), 5.0});
-  }
-  p.markers.push_back({0.0, "MLA", Vec3(0.0f), 0.0});
-  p.y.min = 1.0;
-  return p;
+  return gapDepthPlot(runs, "Each depth across the gaps at 0°: " + sceneName,
+                      "RMSE over the lowest of the gaps at that depth", 1.0, [&](size_t i, size_t k) { return rel[i][k]; });
 }
 
 std::string nearFarTable(const std::vector<GapRun>& runs, const std::vector<std::vector<double>>& rel) {
@@ -235,7 +227,7 @@ std::string nearFarTable(const std::vector<GapRun>& runs, const std::vector<std:
   for (size_t i = 0; i < runs.size(); ++i) {
     const NearFar nf = nearAndFarInFront(runs[i], rel[i]);
     t += "| " + fixed(runs[i].gapMm, 2) + " | " + lText(runs[i]) + " | " +
-         fixedOrDash(depthOfLowestErrorOverDetail(runs[i].bins), 1) + " | " + fixedOrDash(nf.near, 2) + " | " +
+         fixedOrDash(depthOfLowest(runs[i].bins, &DepthBin::errorOverDetail), 1) + " | " + fixedOrDash(nf.near, 2) + " | " +
          fixedOrDash(nf.far, 2) + " | " + fixedOrDash(nf.ratio(), 2) + " |\n";
   }
   return t + "\n";
@@ -321,7 +313,7 @@ std::string acrossGapsText(const std::vector<GapRun>& parallel, const std::vecto
                            const std::vector<GapRun>& toedIn, const std::vector<std::vector<double>>& relToedIn) {
   std::string own;
   for (const GapRun& r : toedIn)
-    own += (own.empty() ? "" : ", ") + fixedOrDash(depthOfLowestErrorOverDetail(r.bins), 1) + " mm at g = " +
+    own += (own.empty() ? "" : ", ") + fixedOrDash(depthOfLowest(r.bins, &DepthBin::errorOverDetail), 1) + " mm at g = " +
            fixed(r.gapMm, 2) + " (L " + lText(r) + ")";
   // Among the gaps whose L lies in front within the scene: where near / far is below 1.
   struct Split {
