@@ -308,6 +308,38 @@ std::string toedInText(const std::vector<GapRun>& parallel, const std::vector<Ga
              "the lenslets' focus at 350 mm.\n\n";
 }
 
+// One scene's sweep: its name in the report, the stem of its files, the scene file, the layout.
+struct SceneRuns {
+  std::string name, stem, file;
+  bool toedIn = false;
+  std::vector<GapRun> runs;
+};
+
+// The verdict's quantities. `scenes`: default, ramp, ramp toed-in, default toed-in; `rel`: their
+// depths across the gaps (relativeToBestGap).
+std::vector<StudyValue> gapValues(const std::vector<SceneRuns>& scenes, const std::vector<std::vector<std::vector<double>>>& rel) {
+  std::vector<StudyValue> values;
+  for (const SceneRuns& sc : scenes)
+    for (const GapRun& r : sc.runs)
+      values.push_back(bound(sc.name + ", g = " + fixed(r.gapMm, 2) + ": ideal display - full chain, at 0°",
+                             r.rungDe.front() - r.rungDe.back(), r.floorDe, false));
+  // Where L lies inside the ramp, the toed-in display's error is lowest near it.
+  for (const GapRun& r : scenes[2].runs)
+    if (r.lMm && std::abs(*r.lMm) < 35.0)
+      values.push_back(bound("depth ramp, toed-in, g = " + fixed(r.gapMm, 2) + ": error within 8 mm of L / beyond 25 mm",
+                             nearOverFar(r, 8.0, 25.0), 1.0, false));
+  // On the default scene, depth by depth across the gaps, where L lies in front within the scene.
+  for (size_t i = 0; i < scenes[3].runs.size(); ++i) {
+    const double q = nearAndFarInFront(scenes[3].runs[i], rel[3][i]).ratio();
+    if (std::isfinite(q))
+      values.push_back(bound("default scene, toed-in, g = " + fixed(scenes[3].runs[i].gapMm, 2) +
+                                 ": each depth over the best gap, within " + fixed(kNearLMm, 0) + " mm of L / in front, farther than " +
+                                 fixed(kFarLMm, 0) + " mm",
+                             q, 1.0, false));
+  }
+  return values;
+}
+
 // The default scene's depths compared across the gaps, under both layouts.
 std::string acrossGapsText(const std::vector<GapRun>& parallel, const std::vector<std::vector<double>>& relParallel,
                            const std::vector<GapRun>& toedIn, const std::vector<std::vector<double>>& relToedIn) {
@@ -356,11 +388,6 @@ StudyReport runGapTradeoff(const StudyOptions& o) {
   const StudyDisplay sd = loadStudyDisplay(o);
   ReportWriter w("gap-tradeoff", o, "the gap between panel and MLA: error budget and error against depth");
   const fs::path scratch = fs::path(o.outDir) / ".gap-tradeoff-runs";
-  struct SceneRuns {
-    std::string name, stem, file;
-    bool toedIn = false;
-    std::vector<GapRun> runs;
-  };
   const std::string ramp = dataPath("scenes/test/depth-ramp.json");
   std::vector<SceneRuns> scenes = {{"default scene", "default", defaultScenePath(), false, {}},
                                    {"depth ramp", "ramp", ramp, false, {}},
@@ -371,27 +398,9 @@ StudyReport runGapTradeoff(const StudyOptions& o) {
   std::error_code ec;
   fs::remove_all(scratch, ec);
 
-  std::vector<StudyValue> values;
-  for (const SceneRuns& sc : scenes)
-    for (const GapRun& r : sc.runs)
-      values.push_back(bound(sc.name + ", g = " + fixed(r.gapMm, 2) + ": ideal display - full chain, at 0°",
-                             r.rungDe.front() - r.rungDe.back(), r.floorDe, false));
-  // Where L lies inside the ramp, the toed-in display's error is lowest near it.
-  for (const GapRun& r : scenes[2].runs)
-    if (r.lMm && std::abs(*r.lMm) < 35.0)
-      values.push_back(bound("depth ramp, toed-in, g = " + fixed(r.gapMm, 2) + ": error within 8 mm of L / beyond 25 mm",
-                             nearOverFar(r, 8.0, 25.0), 1.0, false));
-  // On the default scene, depth by depth across the gaps, where L lies in front within the scene.
   std::vector<std::vector<std::vector<double>>> rel;
   for (const SceneRuns& sc : scenes) rel.push_back(relativeToBestGap(sc.runs));
-  for (size_t i = 0; i < scenes[3].runs.size(); ++i) {
-    const double q = nearAndFarInFront(scenes[3].runs[i], rel[3][i]).ratio();
-    if (std::isfinite(q))
-      values.push_back(bound("default scene, toed-in, g = " + fixed(scenes[3].runs[i].gapMm, 2) +
-                                 ": each depth over the best gap, within " + fixed(kNearLMm, 0) + " mm of L / in front, farther than " +
-                                 fixed(kFarLMm, 0) + " mm",
-                             q, 1.0, false));
-  }
+  const std::vector<StudyValue> values = gapValues(scenes, rel);
   w.section("What", "Which gap g between the panel and the MLA makes the reconstruction best, and why: g swept "
                     "around the lenslets' focal length f = 3.3 mm on " + sd.path + ", the EIA made for each gap "
                     "(generation gap = reconstruction gap = g), seen as in Fig. 11 (inim fig11 with its error "
