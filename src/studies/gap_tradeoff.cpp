@@ -117,19 +117,32 @@ double depthOfLowest(const std::vector<DepthBin>& bins, double DepthBin::*metric
   return z;
 }
 
-// Mean band-limited error within `near` mm of L against that farther than `far` mm from it (bins
-// with enough pixels); NaN when L is not real or either side is empty.
-double nearOverFar(const GapRun& r, double near, double far) {
-  if (!r.lMm) return NAN;
+// The mean of `value` (one per bin; NaN ones left out) within `near` mm of L, and farther than `far`
+// mm from it, only in front of the MLA plane when `inFront`; NaN when a side is empty.
+struct NearFar {
+  double near = NAN, far = NAN;
+  double ratio() const { return near / far; }
+};
+NearFar nearAndFar(const std::vector<DepthBin>& bins, const std::vector<double>& value, double lMm, double near,
+                   double far, bool inFront) {
   double a = 0, b = 0;
   int na = 0, nb = 0;
-  for (const DepthBin& bin : r.binsBandLimited) {
-    if (!std::isfinite(bin.de2000Mean)) continue;
-    const double d = std::abs(bin.zCentre - *r.lMm);
-    if (d <= near) a += bin.de2000Mean, ++na;
-    if (d > far) b += bin.de2000Mean, ++nb;
+  for (size_t k = 0; k < bins.size(); ++k) {
+    if (!std::isfinite(value[k])) continue;
+    const double d = std::abs(bins[k].zCentre - lMm);
+    if (d <= near) a += value[k], ++na;
+    if (d > far && (!inFront || bins[k].zHi > 0.0)) b += value[k], ++nb;
   }
-  return na && nb ? (a / na) / (b / nb) : NAN;
+  return na && nb ? NearFar{a / na, b / nb} : NearFar{};
+}
+
+// Mean band-limited error within `near` mm of L against that farther than `far` mm from it; NaN
+// when L is not real or either side is empty.
+double nearOverFar(const GapRun& r, double near, double far) {
+  if (!r.lMm) return NAN;
+  std::vector<double> de;
+  for (const DepthBin& bin : r.binsBandLimited) de.push_back(bin.de2000Mean);
+  return nearAndFar(r.binsBandLimited, de, *r.lMm, near, far, false).ratio();
 }
 
 // Each depth compared across the gaps: every run's bins over the lowest any run reaches there
@@ -145,21 +158,9 @@ std::vector<std::vector<double>> relativeToBestGap(const std::vector<GapRun>& ru
 // L (the depths the lenslets' focus should serve worse); NaN unless L lies in front of the MLA
 // plane within the scene's depth range, or when a side is empty.
 constexpr double kNearLMm = 5.0, kFarLMm = 10.0;
-struct NearFar {
-  double near = NAN, far = NAN;
-  double ratio() const { return near / far; }
-};
 NearFar nearAndFarInFront(const GapRun& r, const std::vector<double>& rel) {
   if (!r.lMm || *r.lMm <= 0.0 || r.bins.empty() || *r.lMm > r.bins.back().zHi) return {};
-  double a = 0, b = 0;
-  int na = 0, nb = 0;
-  for (size_t k = 0; k < r.bins.size() && k < rel.size(); ++k) {
-    if (!std::isfinite(rel[k])) continue;
-    const double d = std::abs(r.bins[k].zCentre - *r.lMm);
-    if (d <= kNearLMm) a += rel[k], ++na;
-    if (d > kFarLMm && r.bins[k].zHi > 0.0) b += rel[k], ++nb;
-  }
-  return na && nb ? NearFar{a / na, b / nb} : NearFar{};
+  return nearAndFar(r.bins, rel, *r.lMm, kNearLMm, kFarLMm, true);
 }
 
 Plot rungPlot(const std::vector<GapRun>& runs, const std::string& sceneName) {
