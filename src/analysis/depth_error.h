@@ -1,7 +1,7 @@
 #pragma once
 // Where in depth a reconstruction is wrong: the error of a reconstruction against its reference,
 // binned by the depth of the scene surface each pixel sees (the reference's Z channel,
-// view/reference_renderer.h), and a figure of it with the planes that explain it marked.
+// display_view/reference_renderer.h), and a figure of it with the planes that explain it marked.
 //
 // A pixel counts when the mask says so, its coverage (the reference's A channel) is >= 0.5 (it
 // sees a surface rather than a mix of surface and background) and the surfaces its rays hit lie
@@ -36,7 +36,7 @@
 
 namespace inim {
 
-// A reference's depth per pixel (view/reference_renderer.h, channels A, Z and dZ): width x
+// A reference's depth per pixel (display_view/reference_renderer.h, channels A, Z and dZ): width x
 // height, row-major.
 struct DepthMap {
   std::vector<float> z;         // mean display-frame z of the surfaces the pixel's rays hit, mm

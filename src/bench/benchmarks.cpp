@@ -9,7 +9,7 @@
 
 #include "bench/bench_context.h"
 #include "core/parallel.h"
-#include "fields/field_factory.h"
+#include "field_files/field_factory.h"
 
 namespace inim {
 

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "field/placement.h"
-#include "view/view_renderer.h"
+#include "display_view/view_renderer.h"
 
 namespace inim {
 

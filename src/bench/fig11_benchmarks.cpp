@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "bench/bench_context.h"
-#include "experiments/fig11.h"
+#include "runs/fig11.h"
 
 namespace inim::bench {
 

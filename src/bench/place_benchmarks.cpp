@@ -15,7 +15,7 @@
 
 #include "bench/bench_context.h"
 #include "core/output_file.h"
-#include "fields/field_factory.h"
+#include "field_files/field_factory.h"
 #include "place/place_preview.h"
 #include "place/place_session.h"
 #include "synthesis/eia_synthesis.h"

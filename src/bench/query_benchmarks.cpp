@@ -8,9 +8,9 @@
 #include "bench/bench_context.h"
 #include "core/parallel.h"
 #include "core/rng.h"
-#include "fields/field_factory.h"
+#include "field_files/field_factory.h"
 #include "rays/pinhole_rays.h"
-#include "render/renderer.h"
+#include "field_render/renderer.h"
 #include "synthesis/eia_synthesis.h"
 #include "synthesis/orthoscopic.h"
 

@@ -5,7 +5,7 @@
 
 #include "bench/bench_context.h"
 #include "dataset/dataset.h"
-#include "fields/field_factory.h"
+#include "field_files/field_factory.h"
 #include "fitting/dataset_fit.h"
 #include "radiance/trainer.h"
 #include "synthesis/eia_synthesis.h"

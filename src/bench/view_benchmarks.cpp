@@ -9,8 +9,8 @@
 #include "bench/bench_context.h"
 #include "camera/camera_config.h"
 #include "synthesis/eia_synthesis.h"
-#include "view/display_model.h"
-#include "view/view_camera.h"
+#include "display_view/display_model.h"
+#include "display_view/view_camera.h"
 
 namespace inim::bench {
 

@@ -61,7 +61,7 @@ class CameraModel {
   virtual double horizontalFovDeg() const = 0;
 
   // The lens aperture in 2-D coordinates `a` in which ray generation is a fixed function of
-  // (pixel, a, wavelength), for quadrature over the aperture (view/estimators/aperture_table.h):
+  // (pixel, a, wavelength), for quadrature over the aperture (display_view/estimators/aperture_table.h):
   // the pinhole's lens sample in [0, 1)^2 (ignored), the thin lens's lens-plane point in units
   // of its radius (the unit disk), the real lens's point on its rear-vertex plane (mm).
   // apertureDomain: the box of `a` worth scanning for a pixel position (false: no ray passes).

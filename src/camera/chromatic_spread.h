@@ -1,6 +1,6 @@
 #pragma once
 // How far apart a camera puts the colours of one point, in pixels: the test by which the
-// reference view (view/reference_renderer.h) decides whether tracing the camera's dispersion is
+// reference view (display_view/reference_renderer.h) decides whether tracing the camera's dispersion is
 // worth its cost (one camera ray per wavelength, 4 x the rays, and each wavelength's own light
 // sample, which is colour noise) or whether rays traced at 550 nm may carry every wavelength.
 //

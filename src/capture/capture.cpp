@@ -17,7 +17,7 @@
 #include "core/progress.h"
 #include "core/rng.h"
 #include "camera/fov_camera.h"
-#include "render/renderer.h"
+#include "field_render/renderer.h"
 
 namespace fs = std::filesystem;
 

@@ -1,12 +1,12 @@
 // inim calibrate: characterise the display's colour chain at several poses, fit and verify
-// corrections, export the panel-side one (src/experiments/calibrate_run.h).
+// corrections, export the panel-side one (src/runs/calibrate_run.h).
 #include <cstdio>
 #include <memory>
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "experiments/calibrate_run.h"
-#include "experiments/eia_run.h"
+#include "runs/calibrate_run.h"
+#include "runs/eia_run.h"
 
 namespace inim::cli {
 

@@ -1,13 +1,13 @@
 // inim capture: a posed synthetic dataset of an analytic scene (transforms.json + PNGs), like
 // the smartphone scan of the paper's workflow, so scene -> capture -> train -> EIA -> view
-// runs in software against exact ground truth. See src/experiments/capture_run.h.
+// runs in software against exact ground truth. See src/runs/capture_run.h.
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "experiments/capture_run.h"
+#include "runs/capture_run.h"
 
 namespace inim::cli {
 

@@ -1,12 +1,12 @@
 // inim compare A B [--json] [--mask FILE] [--space NAME] ...: full-reference image metrics of
 // A against B: PSNR, SSIM, and the mean and 95th percentile of the per-pixel CIEDE2000. The run
-// is src/experiments/compare_run.h.
+// is src/runs/compare_run.h.
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "cli/commands.h"
-#include "experiments/compare_run.h"
+#include "runs/compare_run.h"
 
 namespace inim::cli {
 

@@ -1,7 +1,7 @@
 // inim eia: orthoscopic elemental-image synthesis. Display + scene (a Field) + placement ->
 // the EIA at the panel's full resolution: a linear EXR of drive values (+ A, Z with --aovs),
 // an encoded PNG beside it, and optionally the placement preview and the triads as a Zemax
-// SDF source file. The run is src/experiments/eia_run.h.
+// SDF source file. The run is src/runs/eia_run.h.
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -9,7 +9,8 @@
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "experiments/eia_run.h"
+#include "runs/eia_run.h"
+#include "runs/run_file.h"
 
 namespace inim::cli {
 

@@ -1,11 +1,11 @@
-// inim fig11: the paper's Fig. 11 reproduced in software (src/experiments/fig11.h): the EIA,
+// inim fig11: the paper's Fig. 11 reproduced in software (src/runs/fig11.h): the EIA,
 // five reconstructed and five reference views, a contact sheet and metrics.
 #include <cstdio>
 #include <memory>
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "experiments/fig11.h"
+#include "runs/fig11.h"
 
 namespace inim::cli {
 

@@ -10,7 +10,7 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/output_file.h"
-#include "fields/field_factory.h"
+#include "field_files/field_factory.h"
 
 namespace inim::cli {
 

@@ -1,6 +1,6 @@
 // inim rays: the pinhole chief ray of every pixel of every EI, as the paper's Zemax ray text
 // (.txt, UTF-8 by default) or inim's binary rays (.irays). With --real-lens, the rays that
-// actually leave the refracting lenslets (src/mla/real_lens_rays.h). With --in, converts a ray
+// actually leave the refracting lenslets (src/mla_optics/real_lens_rays.h). With --in, converts a ray
 // file (the paper's UTF-16LE macro output included) instead. With --for-field, the query rays
 // of an EIA for an external field (src/field/ray_table.h).
 #include <chrono>
@@ -10,8 +10,9 @@
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "experiments/eia_run.h"
-#include "experiments/ray_export.h"
+#include "runs/eia_run.h"
+#include "runs/ray_export.h"
+#include "runs/run_file.h"
 
 namespace inim::cli {
 

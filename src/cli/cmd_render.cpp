@@ -1,6 +1,6 @@
 // inim render: a spectral image of a field (an analytic scene by default) through a
 // pinhole or thin-lens camera. Writes the linear EXR (R,G,B Rec.709, A, Z) and an sRGB PNG
-// beside it. The run is src/experiments/render_run.h.
+// beside it. The run is src/runs/render_run.h.
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -9,7 +9,7 @@
 #include "cli/options.h"
 #include "core/error.h"
 #include "core/format.h"
-#include "experiments/render_run.h"
+#include "runs/render_run.h"
 
 namespace inim::cli {
 

@@ -1,6 +1,6 @@
 // inim triads: the RGB-wavelength triads of an EIA as a Zemax SDF source file (export), and
 // an EIA formed from such a file on a detector at the panel plane (form), as the paper's NSC
-// step did. The runs are src/experiments/triads_run.h.
+// step did. The runs are src/runs/triads_run.h.
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -8,7 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/options.h"
-#include "experiments/triads_run.h"
+#include "runs/triads_run.h"
 
 namespace inim::cli {
 

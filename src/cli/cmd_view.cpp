@@ -1,7 +1,7 @@
 // inim view: what a camera sees when the display shows an EIA (spectral Monte Carlo through the
-// camera lens, the MLA and the panel's subpixels; src/view/view_renderer.h).
+// camera lens, the MLA and the panel's subpixels; src/display_view/view_renderer.h).
 // inim reference: the same camera and pose looking at the scene itself, at the placement the
-// EIA was made with (src/view/reference_renderer.h). Both run in src/experiments/camera_run.h.
+// EIA was made with (src/display_view/reference_renderer.h). Both run in src/runs/camera_run.h.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -13,8 +13,9 @@
 #include "cli/options.h"
 #include "core/error.h"
 #include "core/format.h"
-#include "experiments/camera_run.h"
-#include "experiments/view_reference.h"
+#include "runs/camera_run.h"
+#include "runs/view_reference.h"
+#include "runs/run_file.h"
 
 namespace inim::cli {
 
@@ -164,7 +165,7 @@ void printComparison(const ViewReferenceResult& r) {
   if (r.budget) std::printf("budget:      %s\n", budgetLine(*r.budget).c_str());
 }
 
-// A panel shows drive values in [0, 1] and the emitter clamps the rest (view/panel_emitter.cpp):
+// A panel shows drive values in [0, 1] and the emitter clamps the rest (display_view/panel_emitter.cpp):
 // say so once, with the count, rather than refuse (EIAs filtered or resampled elsewhere
 // overshoot a little, and clamping is what the panel does).
 void warnIfDriveClamped(const ViewRunResult& v, const std::string& eiaPath) {

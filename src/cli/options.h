@@ -12,8 +12,9 @@
 
 #include "core/error.h"
 #include "field/placement.h"
-#include "mla/real_lens_rays.h"
-#include "synthesis/display_overrides.h"
+#include "mla_optics/real_lens_rays.h"
+#include "display/layout_override.h"
+#include "runs/run_file.h"
 
 namespace inim::cli {
 

@@ -8,9 +8,9 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "spectral/cie.h"
-#include "view/display_model.h"
-#include "view/view_camera.h"
-#include "view/view_renderer.h"
+#include "display_view/display_model.h"
+#include "display_view/view_camera.h"
+#include "display_view/view_renderer.h"
 
 namespace inim {
 

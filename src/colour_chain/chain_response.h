@@ -27,8 +27,8 @@
 #include "core/pixel_mask.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
-#include "view/display_pose.h"
-#include "view/view_settings.h"
+#include "display_view/display_pose.h"
+#include "display_view/view_settings.h"
 
 namespace inim {
 

@@ -11,7 +11,7 @@
 // Lattices. Square MLAs give a separable layout: rectangular EIs of eiW x eiH pixels, EI
 // (k, l) covering EIA columns eiCol0[k] .. + eiW and rows eiRow0[l] .. + eiH, its pinhole at
 // (pinholeX[k], pinholeY[l]), its lens at (lensX[k], lensY[l]).
-// Hex MLAs (RealMla's convention, mla/real_mla.h): "pointy-top" cells, horizontal rows of
+// Hex MLAs (RealMla's convention, mla_optics/real_mla.h): "pointy-top" cells, horizontal rows of
 // lenslets, rows P sqrt(3)/2 apart, l counted from the top, ODD rows shifted right by P/2;
 // lens (k, l) at (lensX[k] + (l odd ? oddRowLensShiftMm : 0), lensY[l]), pinholes likewise
 // with oddRowPinholeShiftMm. Each EI is a hexagon of pixels: EIA pixel (c, r) belongs to the

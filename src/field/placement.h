@@ -11,18 +11,6 @@
 //
 // The transform decides which parts of the scene are real images (z > 0, in front of the MLA)
 // and which are virtual (z < 0, behind it).
-//
-// A run file (JSON) holds the placement and, optionally, the other synthesis settings, so a
-// run can be repeated; settings given one by one (the command line) override it:
-//   {
-//     "placement": {"scale": 1 | [sx, sy, sz] | "field_units_per_mm": 0.0075,
-//                   "rotate_deg": [rx, ry, rz], "translate_mm": [x, y, z]},
-//     "display": "file.json", "scene": "file.json",      (paths relative to the run file)
-//     "vcp_mm": 100, "layout": "parallel", "viewing_distance_mm": 350, "spp": 4,
-//     "exposure": 1 | "auto", "gamut": "clip" | "desaturate", "white_balance": "none" | "d65",
-//     "triad_wavelengths": "panel" | "paper" | [656, 566, 471], "seed": 1,
-//     "calibration": "file.cube" | "file.clf"            (relative to the run file)
-//   }
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -62,20 +50,6 @@ class Field;
 // The field's bounds carried into another frame (the display's): the box around their eight
 // corners. False, leaving lo and hi as they were, when the field's bounds are unknown.
 bool boundsInFrame(const Field& field, const Transform& fieldToFrame, Point3d& lo, Point3d& hi);
-
-// Settings a run file may carry (absent = not given; the command line or defaults decide).
-struct RunFile {
-  std::string file;
-  std::optional<Placement> placement;
-  std::optional<std::string> display, scene, calibration;  // resolved against the run file's folder
-  std::optional<double> vcpMm, viewingDistanceMm;
-  std::optional<std::string> layout, exposure, gamut, whiteBalance, triadWavelengths;
-  std::optional<int> spp;
-  std::optional<uint64_t> seed;
-};
-
-// Strict reader (unknown keys are errors naming the file and key).
-RunFile loadRunFile(const std::string& path);
 
 // Parses "x,y,z" (or one number when `allowScalar`, meaning x = y = z), as settings are
 // written on the command line; InputError naming `key` otherwise.

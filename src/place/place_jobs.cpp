@@ -8,8 +8,8 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/output_file.h"
-#include "experiments/eia_run.h"
-#include "experiments/view_reference.h"
+#include "runs/eia_run.h"
+#include "runs/view_reference.h"
 
 namespace inim {
 

@@ -9,8 +9,9 @@
 #include "core/output_file.h"
 #include "core/parallel.h"
 #include "place/place_preview.h"
-#include "synthesis/display_overrides.h"
+#include "display/layout_override.h"
 #include "synthesis/preview.h"
+#include "runs/run_file.h"
 
 namespace inim {
 

@@ -29,7 +29,7 @@
 #include "core/json_config.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
-#include "fields/field_factory.h"
+#include "field_files/field_factory.h"
 #include "place/place_jobs.h"
 #include "place/place_state.h"
 #include "synthesis/preview.h"

@@ -9,12 +9,12 @@
 
 #include "analysis/plot.h"
 #include "core/rng.h"
-#include "mla/real_mla.h"
+#include "mla_optics/real_mla.h"
 #include "studies/cover_glass.h"
 #include "studies/studies.h"
 #include "studies/study_display.h"
 #include "studies/study_pipeline.h"
-#include "mla/ideal_mla.h"
+#include "mla_optics/ideal_mla.h"
 #include "studies/study_report.h"
 
 namespace inim {

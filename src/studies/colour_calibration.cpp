@@ -1,5 +1,5 @@
 // `inim study colour-calibration`: the colour chain of the paper's display characterised,
-// corrected and verified on hold-out colours (src/experiments/calibrate_run.h), for three
+// corrected and verified on hold-out colours (src/runs/calibrate_run.h), for three
 // panels: the default display's placeholder primaries, measured phone-OLED primaries, and the
 // measured panel driven as the placeholder file says (what a user with an uncharacterised
 // panel has). Report, metrics.json, plots, and each run's calibration folder.
@@ -12,7 +12,7 @@
 #include "core/format.h"
 #include "core/output_file.h"
 #include "display/display.h"
-#include "experiments/calibrate_run.h"
+#include "runs/calibrate_run.h"
 #include "spectral/color.h"
 #include "studies/studies.h"
 #include "studies/study_display.h"

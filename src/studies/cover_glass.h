@@ -7,7 +7,7 @@
 #include "display/cover_glass.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
-#include "view/panel_emitter.h"
+#include "display_view/panel_emitter.h"
 
 namespace inim::study_detail {
 

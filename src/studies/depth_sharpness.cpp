@@ -13,13 +13,13 @@
 #include "analysis/plot.h"
 #include "camera/camera_config.h"
 #include "display/cover_glass.h"
-#include "mla/real_mla.h"
+#include "mla_optics/real_mla.h"
 #include "studies/studies.h"
 #include "studies/study_display.h"
 #include "studies/study_pipeline.h"
 #include "studies/study_report.h"
-#include "view/display_model.h"
-#include "view/view_renderer.h"
+#include "display_view/display_model.h"
+#include "display_view/view_renderer.h"
 
 namespace inim {
 

@@ -12,8 +12,8 @@
 #include "studies/study_display.h"
 #include "studies/study_pipeline.h"
 #include "studies/study_report.h"
-#include "view/display_model.h"
-#include "view/view_renderer.h"
+#include "display_view/display_model.h"
+#include "display_view/view_renderer.h"
 
 namespace inim {
 

@@ -31,7 +31,6 @@
 #include "rays/ray_set.h"
 #include "synthesis/panel_color.h"
 #include "field/placement.h"
-#include "triads/triads.h"
 
 namespace inim {
 
@@ -58,7 +57,7 @@ struct SynthesisSettings {
   int raysPerBatch = 4096;      // field queries per Field::query call
   // Precomputed display rays (L.numRays() of them, in ray order, origins on or near z = 0,
   // unit directions with d.z > 0), used instead of the pinhole rays: e.g. the real-lens rays
-  // of mla/real_lens_rays.h. Not owned; null: pinhole rays (rays/pinhole_rays.h).
+  // of mla_optics/real_lens_rays.h. Not owned; null: pinhole rays (rays/pinhole_rays.h).
   const RaySet* displayRays = nullptr;
 };
 

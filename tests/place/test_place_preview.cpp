@@ -7,7 +7,7 @@
 
 #include "core/output_file.h"
 #include "display/ei_layout.h"
-#include "fields/field_factory.h"
+#include "field_files/field_factory.h"
 #include "place/place_preview.h"
 
 using namespace inim;

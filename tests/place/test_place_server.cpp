@@ -15,6 +15,7 @@
 #include "place/served_session.h"
 #include "place/place_server.h"
 #include "place/place_session.h"
+#include "runs/run_file.h"
 
 using namespace inim;
 namespace fs = std::filesystem;

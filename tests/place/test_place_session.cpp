@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "core/output_file.h"
-#include "fields/field_factory.h"
+#include "field_files/field_factory.h"
 #include "place/place_session.h"
 
 using namespace inim;

@@ -6,6 +6,7 @@
 #include "fixtures.h"
 #include "place/place_jobs.h"
 #include "place/place_state.h"
+#include "runs/run_file.h"
 
 using namespace inim;
 

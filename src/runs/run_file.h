@@ -1,0 +1,35 @@
+#pragma once
+// The run file: a run's placement and, optionally, its other settings, so a run can be
+// repeated. Settings given one by one (the command line) override it:
+//   {
+//     "placement": {"scale": 1 | [sx, sy, sz] | "field_units_per_mm": 0.0075,
+//                   "rotate_deg": [rx, ry, rz], "translate_mm": [x, y, z]},
+//     "display": "file.json", "scene": "file.json",      (paths relative to the run file)
+//     "vcp_mm": 100, "layout": "parallel", "viewing_distance_mm": 350, "spp": 4,
+//     "exposure": 1 | "auto", "gamut": "clip" | "desaturate", "white_balance": "none" | "d65",
+//     "triad_wavelengths": "panel" | "paper" | [656, 566, 471], "seed": 1,
+//     "calibration": "file.cube" | "file.clf"            (relative to the run file)
+//   }
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "field/placement.h"
+
+namespace inim {
+
+// Settings a run file may carry (absent = not given; the command line or defaults decide).
+struct RunFile {
+  std::string file;
+  std::optional<Placement> placement;
+  std::optional<std::string> display, scene, calibration;  // resolved against the run file's folder
+  std::optional<double> vcpMm, viewingDistanceMm;
+  std::optional<std::string> layout, exposure, gamut, whiteBalance, triadWavelengths;
+  std::optional<int> spp;
+  std::optional<uint64_t> seed;
+};
+
+// Strict reader (unknown keys are errors naming the file and key).
+RunFile loadRunFile(const std::string& path);
+
+}  // namespace inim

@@ -1,0 +1,64 @@
+#include "runs/triads_run.h"
+
+#include <cmath>
+
+#include "display/gap_range.h"
+#include "core/error.h"
+#include "core/format.h"
+#include "core/image.h"
+#include "core/output_file.h"
+#include "core/progress.h"
+#include "display/display.h"
+#include "rays/pinhole_rays.h"
+#include "synthesis/eia_synthesis.h"
+#include "triads/sdf.h"
+
+namespace inim {
+
+TriadExportResult exportTriads(const TriadExportSettings& s) {
+  const std::string ext = lowerExtension(s.out);
+  if (ext != ".sdf" && ext != ".dat")
+    throw InputError("", "out", "\"" + s.out + "\"", "a Zemax source file name (.sdf or .dat)");
+  if (!(s.options.fluxScale > 0.0f) || !std::isfinite(s.options.fluxScale))
+    throw InputError("", "flux_scale", std::to_string(s.options.fluxScale), "a number > 0");
+  Display d = loadDisplay(displayPathOrDefault(s.displayPath));
+  const EiLayout L = applyLayoutOverride(d, s.layout);
+  TriadExportResult r;
+  r.wavelengths = parseTriadWavelengths(d.panel, s.wavelengths);
+  const std::vector<float> drive = driveFromEia(L, eiaArea(L, readImage(s.eiaPath), s.eiaPath));
+  const RaySet rays = generatePinholeRays(L);
+  TriadOptions to = s.options;
+  to.description = "inim triads: " + d.name + ", " + r.wavelengths.source;
+  OutputSet outputs;
+  ProgressBar bar("triads", uint64_t(rays.size()) * 3);
+  r.triads = writeTriadSdf(outputs.add(s.out), rays, drive, r.wavelengths, to, &bar);
+  bar.finish();
+  outputs.commit();
+  r.displayRays = rays.size();
+  return r;
+}
+
+TriadFormResult formTriads(const TriadFormSettings& s) {
+  if (lowerExtension(s.out) != ".exr") throw InputError("", "out", "\"" + s.out + "\"", "an OpenEXR file name (.exr)");
+  if (!s.png.empty() && lowerExtension(s.png) != ".png")
+    throw InputError("", "png", "\"" + s.png + "\"", "a PNG file name (.png)");
+  Display d = loadDisplay(displayPathOrDefault(s.displayPath));
+  EiLayout L = applyLayoutOverride(d, s.layout);
+  if (s.gapMm) {
+    checkGapMm(*s.gapMm, "", "gap_mm");
+    L = L.withGap(*s.gapMm);
+  }
+  TriadFormResult r;
+  r.wavelengths = parseTriadWavelengths(d.panel, s.wavelengths);
+  const EiaFormation formed = formEiaFromSdf(L, s.sdfPath, r.wavelengths);
+  const Image eia = onPanel(L, formed.eia);
+  OutputSet outputs;
+  writeImage(eia, outputs.add(s.out));
+  if (!s.png.empty()) writeImage(encodeForPanel(eia, d.panel.eotf), outputs.add(s.png));
+  outputs.commit();
+  r.width = eia.width, r.height = eia.height;
+  r.binned = formed.binned, r.missed = formed.missed, r.unknownWavelength = formed.unknownWavelength;
+  return r;
+}
+
+}  // namespace inim
