@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "spectral/color.h"
+#include "core/file_kinds.h"
 
 namespace inim {
 
@@ -423,9 +424,8 @@ ImageMetrics compareImageFiles(const std::string& pathA, const std::string& path
 }
 
 std::string defaultColorSpaceForFile(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext == ".exr" || ext == ".hdr" || ext == ".pfm" ? "lin_rec709" : "srgb";
+  const std::optional<FileKind> k = fileKindOf(path);
+  return k == FileKind::Exr || k == FileKind::Hdr || k == FileKind::Pfm ? "lin_rec709" : "srgb";
 }
 
 Json metricsJson(const ImageMetrics& m) {

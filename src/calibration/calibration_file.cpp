@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/file_kinds.h"
 #include "core/format.h"
 
 namespace inim {
@@ -20,25 +21,18 @@ nlohmann::json ClfModel::parameters() const {
 }
 
 std::shared_ptr<const ColourModel> loadCalibration(const std::string& path, const std::string& key) {
-  const std::string ext = lowerExtension(path);
   const std::string quoted = "\"" + path + "\"";
-  if (ext != ".cube" && ext != ".clf")
-    throw InputError(path, key, quoted, "a 3D LUT calibration file (.cube or .clf)");
+  const FileKind kind =
+      requireFileKind(path, key, {FileKind::Cube, FileKind::Clf}, "a 3D LUT calibration file (.cube or .clf)", path);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path, std::ios::binary))
     throw InputError(path, key, quoted, "a readable calibration file (.cube or .clf)");
-  if (ext == ".cube") return std::make_shared<const Lut3d>(readCube(path));
+  if (kind == FileKind::Cube) return std::make_shared<const Lut3d>(readCube(path));
   return std::make_shared<const ClfModel>(readClf(path));
 }
 
 std::string describeCalibration(const std::string& path, const ColourModel& model) {
-  auto lutText = [](const Lut3d& lut) {
-    return "3D LUT, " + std::to_string(lut.size()) + " nodes per axis, tetrahedral";
-  };
-  if (const auto* lut = dynamic_cast<const Lut3d*>(&model)) return path + " (" + lutText(*lut) + ")";
-  if (const auto* clf = dynamic_cast<const ClfModel*>(&model))
-    return path + " (CLF: " + (clf->process().matrix ? "3x3 matrix, then " : "") + lutText(clf->process().lut) + ")";
-  return path + " (" + model.name() + ")";
+  return path + " (" + model.describe() + ")";
 }
 
 }  // namespace inim

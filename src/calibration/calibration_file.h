@@ -23,6 +23,9 @@ class ClfModel : public ColourModel {
   explicit ClfModel(ClfProcess process) : process_(std::move(process)) {}
   Vec3d apply(const Vec3d& source) const override { return process_.apply(source); }
   std::string name() const override { return process_.matrix ? "clf_matrix_lut3d" : "clf_lut3d"; }
+  std::string describe() const override {
+    return std::string("CLF: ") + (process_.matrix ? "3x3 matrix, then " : "") + process_.lut.describe();
+  }
   // The matrix (rows, when present) and the LUT's parameters.
   nlohmann::json parameters() const override;
   const ClfProcess& process() const { return process_; }

@@ -18,6 +18,8 @@ class ColourModel {
   virtual Vec3d apply(const Vec3d& source) const = 0;
   // Short identifier, also the "model" field of parameters().
   virtual std::string name() const = 0;
+  // What it is, for reports ("3D LUT, 33 nodes per axis, tetrahedral"); its name by default.
+  virtual std::string describe() const { return name(); }
   // Everything needed to reproduce apply(), for reports and later reloading.
   virtual nlohmann::json parameters() const = 0;
 };

@@ -31,6 +31,9 @@ class Lut3d : public ColourModel {
   Vec3d eval(const Vec3d& rgb) const;
   Vec3d apply(const Vec3d& source) const override { return eval(source); }
   std::string name() const override { return "lut3d"; }
+  std::string describe() const override {
+    return "3D LUT, " + std::to_string(size_) + " nodes per axis, tetrahedral";
+  }
   // Size, interpolation and the table (rows r g b, red fastest).
   nlohmann::json parameters() const override;
 

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/output_file.h"
+#include "core/file_kinds.h"
 
 namespace fs = std::filesystem;
 
@@ -16,7 +17,7 @@ std::string defaultCameraPath() { return dataPath("optics/cameras/alvium-1800-u-
 
 CameraDescription loadCameraDescription(const std::string& s, const LensLoadOptions& lensOptions) {
   std::string path;
-  if (s.find('/') != std::string::npos || (s.size() > 5 && s.substr(s.size() - 5) == ".json")) {
+  if (s.find('/') != std::string::npos || isFileKind(s, FileKind::Json)) {
     path = dataPath(s);
   } else {
     path = dataPath("optics/cameras/" + s + ".json");

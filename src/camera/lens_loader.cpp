@@ -11,16 +11,13 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/output_file.h"
+#include "core/file_kinds.h"
 
 namespace fs = std::filesystem;
 
 namespace inim {
 
 namespace {
-
-bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 // Rows listed with "before" thicknesses -> "after" thicknesses (same listed order).
 void toAfterConvention(std::vector<LensSurface>& s) {
@@ -40,7 +37,8 @@ const char* thicknessConventionName(ThicknessConvention c) {
 }
 
 std::string resolveLensPath(const std::string& s, const std::string& contextFile, const std::string& key) {
-  const bool isPath = s.find('/') != std::string::npos || endsWith(s, ".dat") || endsWith(s, ".json");
+  const std::optional<FileKind> kind = fileKindOf(s);
+  const bool isPath = s.find('/') != std::string::npos || kind == FileKind::Dat || kind == FileKind::Json;
   if (isPath) {
     std::string p = s;
     if (fs::path(s).is_relative() && !contextFile.empty()) {
@@ -62,8 +60,8 @@ std::string resolveLensPath(const std::string& s, const std::string& contextFile
   std::vector<std::string> names;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dataPath("optics/lenses"), ec)) {
-    auto ext = e.path().extension();
-    if (ext == ".json" || ext == ".dat") names.push_back(e.path().stem().string());
+    const std::optional<FileKind> k = fileKindOf(e.path().string());
+    if (k == FileKind::Json || k == FileKind::Dat) names.push_back(e.path().stem().string());
   }
   std::sort(names.begin(), names.end());
   std::string list;
@@ -76,7 +74,7 @@ std::string resolveLensPath(const std::string& s, const std::string& contextFile
 
 LensSystem loadLens(const std::string& pathOrName, const LensLoadOptions& opt) {
   const std::string path = resolveLensPath(pathOrName);
-  if (endsWith(path, ".json")) {
+  if (isFileKind(path, FileKind::Json)) {
     Json j = readJsonFile(path);
     return parseLensJson(JsonObject(j, path, ""), opt);
   }

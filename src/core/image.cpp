@@ -12,6 +12,7 @@
 #include "core/interrupt.h"
 #include "core/quiet_stderr.h"
 #include "core/size_budget.h"
+#include "core/file_kinds.h"
 
 namespace inim {
 
@@ -64,16 +65,14 @@ void writeImage(const Image& img, const std::string& path, const ImageNumbers& n
   throwIfInterrupted();
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw std::runtime_error("cannot create image writer for " + path + ": " + OIIO::geterror());
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  bool isExr = ext == ".exr";
+  const bool isExr = isFileKind(path, FileKind::Exr);
   OIIO::ImageSpec spec(img.width, img.height, img.numChannels(),
                        isExr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
   spec.channelnames = img.channels;
   int a = img.channelIndex("A");
   spec.alpha_channel = a;
   if (isExr) spec.attribute("compression", compression == ExrCompression::Zip ? "zip" : "none");
-  if (ext == ".png") {
+  if (isFileKind(path, FileKind::Png)) {
     // zlib level 3 without row filters (libpng's PNG_FILTER_NONE, 0x08): 1.5-3 x faster than
     // libpng's default (level 6, adaptive filters) on inim's images, within -7 % (contact sheet,
     // plots) to +17 % (smooth views) of the size.

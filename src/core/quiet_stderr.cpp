@@ -1,4 +1,5 @@
 #include "core/quiet_stderr.h"
+#include "core/file_kinds.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -17,9 +18,7 @@ int gSaved = -1;    // the real stderr while redirected
 }  // namespace
 
 LibraryStderrSilenced::LibraryStderrSilenced(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".png") return;
+  if (!isFileKind(path, FileKind::Png)) return;
   std::lock_guard<std::mutex> lock(gMutex);
   active_ = true;
   if (gUsers++ > 0) return;

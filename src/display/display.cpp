@@ -9,6 +9,7 @@
 #include "core/output_file.h"
 #include "display/ei_layout.h"
 #include "spectral/dispersion.h"
+#include "core/file_kinds.h"
 
 namespace fs = std::filesystem;
 
@@ -36,7 +37,7 @@ static T readPart(const JsonObject& o, const std::string& key, const std::string
   if (!v.is_string()) o.fail(key, jsonValueText(v), "an object, a .json file path or a catalog name");
   std::string s = v.get<std::string>();
   std::string path;
-  if (s.size() > 5 && s.substr(s.size() - 5) == ".json") {
+  if (isFileKind(s, FileKind::Json)) {
     path = o.path(key);
   } else {
     path = dataPath("optics/" + folder + "/" + s + ".json");
@@ -44,7 +45,7 @@ static T readPart(const JsonObject& o, const std::string& key, const std::string
       std::vector<std::string> names;
       std::error_code ec;
       for (const auto& e : fs::directory_iterator(dataPath("optics/" + folder), ec))
-        if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+        if (isFileKind(e.path().string(), FileKind::Json)) names.push_back(e.path().stem().string());
       std::sort(names.begin(), names.end());
       std::string list;
       for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;

@@ -11,6 +11,7 @@
 #include "core/image.h"
 #include "core/npy.h"
 #include "core/parallel.h"
+#include "core/file_kinds.h"
 #include "core/rng.h"
 #include "spectral/cie.h"
 #include "spectral/color.h"
@@ -24,9 +25,8 @@ const std::vector<std::string> kRayChannels = {"ox", "oy", "oz", "dx", "dy", "dz
 
 // Rows of a table file as (rows, cols) floats, with the channel names for EXR.
 NpyArray readTable(const std::string& path, std::vector<std::string>& channels) {
-  const std::string ext = lowerExtension(path);
-  if (ext == ".npy") return readNpy(path);
-  if (ext != ".exr") throw InputError(path, "file", "\"" + path + "\"", "a .npy or .exr table");
+  if (requireFileKind(path, "file", {FileKind::Npy, FileKind::Exr}, "a .npy or .exr table", path) == FileKind::Npy)
+    return readNpy(path);
   Image img = readImage(path, false);
   channels = img.channels;
   NpyArray a;
@@ -64,7 +64,7 @@ void writeRayTable(const std::string& path, const RayTable& t) {
     row[3] = r.d.x, row[4] = r.d.y, row[5] = r.d.z;
     row[6] = r.tNear, row[7] = r.tFar;
   };
-  if (lowerExtension(path) == ".npy") {
+  if (isFileKind(path, FileKind::Npy)) {
     NpyArray a;
     a.rows = int64_t(n), a.cols = 8;
     a.data.resize(n * 8);
@@ -207,7 +207,7 @@ std::vector<float> answerRayTable(const Field& field, const RayTable& table, uin
 
 void writeColorTable(const std::string& path, std::vector<float> rows) {
   const size_t n = rows.size() / 5;
-  if (lowerExtension(path) == ".npy") {
+  if (isFileKind(path, FileKind::Npy)) {
     NpyArray a;
     a.rows = int64_t(n), a.cols = 5;
     a.data = std::move(rows);

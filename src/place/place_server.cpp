@@ -14,6 +14,7 @@
 #include "place/place_jobs.h"
 #include "place/place_live.h"
 #include "place/place_session.h"
+#include "core/file_kinds.h"
 
 namespace inim {
 
@@ -287,7 +288,7 @@ int PlaceServer::handle(mg_connection* c) {
     } else if (path == "/api/file") {
       only("GET");
       const std::string name = sanitizeOutputName(queryVar(ri, "name"));
-      if (name.size() < 5 || name.substr(name.size() - 4) != ".png")
+      if (!isFileKind(name, FileKind::Png))
         throw InputError("request", "name", "\"" + name + "\"", "the name of a .png in the output folder");
       const std::string bytes = readFile(session_.outDir() + "/" + name);
       a = bytes.empty() ? error(404, "no file " + name) : Answer{200, "image/png", bytes, ""};

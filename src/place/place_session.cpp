@@ -12,6 +12,7 @@
 #include "display/layout_override.h"
 #include "synthesis/preview.h"
 #include "runs/run_file.h"
+#include "core/file_kinds.h"
 
 namespace inim {
 
@@ -27,7 +28,7 @@ std::vector<std::string> displayFiles(const std::string& given) {
   std::vector<std::string> files;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dataPath("optics/displays"), ec))
-    if (e.path().extension() == ".json") files.push_back(absolutePath(e.path().string()));
+    if (isFileKind(e.path().string(), FileKind::Json)) files.push_back(absolutePath(e.path().string()));
   std::sort(files.begin(), files.end());
   if (std::find(files.begin(), files.end(), given) == files.end()) files.push_back(given);
   return files;

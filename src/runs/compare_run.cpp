@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include "core/file_kinds.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/image.h"
@@ -30,7 +31,7 @@ CompareRunResult runCompare(const CompareRunSettings& s) {
   co.spaceA = s.space.empty() ? defaultColorSpaceForFile(s.a) : s.space;
   co.spaceB = s.space.empty() ? defaultColorSpaceForFile(s.b) : s.space;
   if (!s.space.empty()) checkSpace(s.space);
-  if (!s.deMap.empty() && lowerExtension(s.deMap) != ".exr")
+  if (!s.deMap.empty() && !isFileKind(s.deMap, FileKind::Exr))
     throw InputError("", "de_map", s.deMap, "an .exr file (the map holds unbounded float values)");
   const Image a = readImage(s.a), b = readImage(s.b);  // InputError for NaN / Inf
   requireSameSize(a, b, s.a, s.b);

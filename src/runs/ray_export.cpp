@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/output_file.h"
+#include "core/file_kinds.h"
 #include "core/progress.h"
 #include "display/display.h"
 #include "field/ray_table.h"
@@ -19,14 +20,14 @@
 namespace inim {
 
 RayFileFormat rayFileFormat(const std::string& path, const std::string& key, bool forField) {
-  const std::string ext = lowerExtension(path);
   if (forField) {
-    if (ext == ".npy" || ext == ".exr") return RayFileFormat::FieldTable;
-    throw InputError("", key, "\"" + path + "\"", "with --for-field, a .npy or .exr ray table");
+    (void)requireFileKind(path, key, {FileKind::Npy, FileKind::Exr}, "with --for-field, a .npy or .exr ray table");
+    return RayFileFormat::FieldTable;
   }
-  if (ext == ".txt") return RayFileFormat::ZemaxText;
-  if (ext == ".irays") return RayFileFormat::Binary;
-  throw InputError("", key, "\"" + path + "\"", "a file ending in .txt (Zemax ray text) or .irays (inim binary rays)");
+  return requireFileKind(path, key, {FileKind::Txt, FileKind::Irays},
+                         "a file ending in .txt (Zemax ray text) or .irays (inim binary rays)") == FileKind::Txt
+             ? RayFileFormat::ZemaxText
+             : RayFileFormat::Binary;
 }
 
 namespace {

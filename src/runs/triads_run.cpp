@@ -7,6 +7,7 @@
 #include "core/format.h"
 #include "core/image.h"
 #include "core/output_file.h"
+#include "core/file_kinds.h"
 #include "core/progress.h"
 #include "display/display.h"
 #include "rays/pinhole_rays.h"
@@ -16,9 +17,7 @@
 namespace inim {
 
 TriadExportResult exportTriads(const TriadExportSettings& s) {
-  const std::string ext = lowerExtension(s.out);
-  if (ext != ".sdf" && ext != ".dat")
-    throw InputError("", "out", "\"" + s.out + "\"", "a Zemax source file name (.sdf or .dat)");
+  requireFileKind(s.out, "out", {FileKind::Sdf, FileKind::Dat}, "a Zemax source file name (.sdf or .dat)");
   if (!(s.options.fluxScale > 0.0f) || !std::isfinite(s.options.fluxScale))
     throw InputError("", "flux_scale", std::to_string(s.options.fluxScale), "a number > 0");
   Display d = loadDisplay(displayPathOrDefault(s.displayPath));
@@ -39,9 +38,8 @@ TriadExportResult exportTriads(const TriadExportSettings& s) {
 }
 
 TriadFormResult formTriads(const TriadFormSettings& s) {
-  if (lowerExtension(s.out) != ".exr") throw InputError("", "out", "\"" + s.out + "\"", "an OpenEXR file name (.exr)");
-  if (!s.png.empty() && lowerExtension(s.png) != ".png")
-    throw InputError("", "png", "\"" + s.png + "\"", "a PNG file name (.png)");
+  requireFileKind(s.out, "out", {FileKind::Exr}, "an OpenEXR file name (.exr)");
+  if (!s.png.empty()) requireFileKind(s.png, "png", {FileKind::Png}, "a PNG file name (.png)");
   Display d = loadDisplay(displayPathOrDefault(s.displayPath));
   EiLayout L = applyLayoutOverride(d, s.layout);
   if (s.gapMm) {

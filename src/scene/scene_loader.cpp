@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/file_kinds.h"
 #include "core/output_file.h"
 #include "scene/obj_loader.h"
 #include "spectral/cie.h"
@@ -241,8 +242,8 @@ ReflectanceTexture parseReflectance(const JsonObject& m, const std::string& key)
       ReflectanceTexture tex;
       if (tt == TextureType::Image) {
         std::string file = resolveFile(o, "file");
-        const std::string ext = lowerExtension(file);
-        bool floatFormat = ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff";
+        const std::optional<FileKind> kind = fileKindOf(file);
+        bool floatFormat = kind == FileKind::Exr || kind == FileKind::Hdr || kind == FileKind::Tiff;
         std::string enc = o.choice("encoding", {"srgb", "linear"}, floatFormat ? "linear" : "srgb");
         bool repeat = o.boolean("repeat", false);
         Image img;

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/file_kinds.h"
 #include "core/format.h"
 #include "splats/ply_reader.h"
 
@@ -245,9 +246,9 @@ Gaussians loadSplatFile(const std::string& path) {
 }
 
 Gaussians loadGaussians(const std::string& path) {
-  const std::string ext = lowerExtension(path);
-  if (ext == ".splat") return loadSplatFile(path);
-  if (ext != ".ply") throw InputError(path, "file", "\"" + path + "\"", "a Gaussian-splat file (.ply or .splat)");
+  if (requireFileKind(path, "file", {FileKind::Ply, FileKind::Splat}, "a Gaussian-splat file (.ply or .splat)", path) ==
+      FileKind::Splat)
+    return loadSplatFile(path);
   const PlyFile ply = PlyFile::read(path);
   if (ply.has("chunk")) return loadCompressedPly(ply);
   return loadInriaPly(ply);
