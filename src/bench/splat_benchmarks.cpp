@@ -31,7 +31,7 @@ SplatContext& splatContext() {
   static SplatContext ctx = [] {
     SplatContext c;
     c.loaded = loadField(dataPath("scenes/splats/guitar.compressed.ply"), "field");
-    c.field = dynamic_cast<const SplatField*>(c.loaded.field.get());
+    c.field = c.loaded.splats;
     FovCameraModel camera(c.camera);
     for (int y = 0; y < c.camera.height; ++y)
       for (int x = 0; x < c.camera.width; ++x) {

@@ -18,7 +18,7 @@ void addBenchCommand(CLI::App& app) {
   auto o = std::make_shared<Opts>();
   ViewBenchSettings& v = o->s.view;
   RadianceBenchSettings& r = o->s.radiance;
-  auto* cmd = app.add_subcommand("bench", "Speed benchmarks (Google Benchmark) with ratios measured in one run");
+  CLI::App* cmd = &app;
   cmd->add_option("--filter", o->s.filter, "Regex of benchmarks to run")->capture_default_str();
   cmd->add_option("--min-time", o->s.minTime, "Minimum seconds per benchmark")->capture_default_str();
   cmd->add_option("--view-width", v.width, "Image width of the view/ benchmarks (2592 = the sensor)")

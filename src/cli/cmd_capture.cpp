@@ -19,9 +19,7 @@ void addCaptureCommand(CLI::App& app) {
     RunOptions run;
   };
   auto o = std::make_shared<Opts>();
-  auto* cmd = app.add_subcommand(
-      "capture", "Render a posed dataset of an analytic scene from a cap of camera positions in front of it "
-                 "(transforms.json + sRGB PNGs with alpha), for inim train or any NeRF tool");
+  CLI::App* cmd = &app;
   cmd->add_option("--scene", o->s.scenePath, "Scene JSON (default: scenes/paper-fig7.json)");
   cmd->add_option("--out", o->s.outDir, "Output folder")->required();
   cmd->add_option("--views", o->s.capture.views, "Number of views")->capture_default_str();
@@ -39,7 +37,7 @@ void addCaptureCommand(CLI::App& app) {
   cmd->add_flag("--quiet", o->quiet, "Print nothing but warnings");
   addRunOptions(cmd, o->run, [o] {
     CaptureRunSettings s = o->s;
-    s.capture.seed = o->run.seed;
+    o->run.applySeed(s.capture.seed);
     s.capture.progress = !o->quiet;
     if (o->radius > 0) s.capture.radiusMm = o->radius;
     const CaptureRunResult run = runCapture(s);

@@ -18,10 +18,7 @@ void addCompareCommand(CLI::App& app) {
     bool json = false;
   };
   auto opts = std::make_shared<Opts>();
-  auto* cmd = app.add_subcommand(
-      "compare",
-      "Image metrics of A against B: PSNR, SSIM (Wang et al. 2004, 11x11 Gaussian, sigma 1.5) and CIEDE2000 (mean, "
-      "95th percentile, max)");
+  CLI::App* cmd = &app;
   cmd->add_option("A", opts->s.a, "First image (e.g. the reference)")->required();
   cmd->add_option("B", opts->s.b, "Second image (e.g. the reconstruction); same size as A")->required();
   cmd->add_flag("--json", opts->json,

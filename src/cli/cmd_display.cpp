@@ -10,7 +10,7 @@
 namespace inim::cli {
 
 void addDisplayCommand(CLI::App& app) {
-  auto* display = app.add_subcommand("display", "Display descriptions (optics/displays/*.json)");
+  CLI::App* display = &app;
   display->require_subcommand(1);
   struct Opts {
     std::string file;

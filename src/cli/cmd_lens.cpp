@@ -14,7 +14,7 @@
 namespace inim::cli {
 
 void addLensCommand(CLI::App& app) {
-  auto* lens = app.add_subcommand("lens", "Camera lens prescriptions (optics/lenses/*.dat, *.json)");
+  CLI::App* lens = &app;
   lens->require_subcommand(1);
   struct Opts {
     std::string file;

@@ -28,9 +28,7 @@ struct PlaceOpts {
 
 void addPlaceCommand(CLI::App& app) {
   auto o = std::make_shared<PlaceOpts>();
-  auto* cmd = app.add_subcommand("place",
-                                 "Place a scene or a trained field on the display interactively, in a browser: a local "
-                                 "web server with live previews that writes the run file, the EIA and the SDF");
+  CLI::App* cmd = &app;
   auto* sceneOpt = cmd->add_option("--scene", o->scene, "Scene JSON (default: scenes/paper-fig7.json)");
   cmd->add_option("--field", o->session.fieldPath,
                   "The field to place: a scene JSON, a trained radiance field (.inimrf) or Gaussian splats (.ply, .splat)")
@@ -44,7 +42,7 @@ void addPlaceCommand(CLI::App& app) {
       ->capture_default_str();
   addRunOptions(cmd, o->runOpts, [o] {
     if (!o->scene.empty()) o->session.fieldPath = o->scene;
-    o->session.seed = o->runOpts.seed;
+    o->runOpts.applySeed(o->session.seed);
     PlaceSession session(o->session);
     PlaceServer server(session, o->server);
     if (!isLoopbackHost(o->server.host))

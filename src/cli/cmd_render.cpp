@@ -22,7 +22,7 @@ void addRenderCommand(CLI::App& app) {
     CLI::Option *focusOpt = nullptr, *maxDepthOpt = nullptr;
   };
   auto o = std::make_shared<Opts>();
-  auto* cmd = app.add_subcommand("render", "Render a scene spectrally through a pinhole or thin-lens camera");
+  CLI::App* cmd = &app;
   cmd->add_option("--scene,--field", o->s.fieldPath,
                   "Scene JSON, a trained radiance field (.inimrf) for novel views in its own units and frame, "
                   "or Gaussian splats (.ply, .splat; placed in the display frame) (default: scenes/paper-fig7.json)");
@@ -56,7 +56,7 @@ void addRenderCommand(CLI::App& app) {
         throw InputError("", "max_depth", std::to_string(o->maxDepth), "a scattering depth in 0-1000");
       s.maxDepth = o->maxDepth;
     }
-    s.render.seed = o->run.seed;
+    o->run.applySeed(s.render.seed);
     const RenderRunResult r = runRender(s);
     std::printf("rendered %s: %dx%d, %d spp, %.2f s, %.2f Mrays/s (camera rays)\n  wrote %s\n  wrote %s\n",
                 r.fieldPath.c_str(), s.camera.width, s.camera.height, s.render.spp, r.render.seconds,

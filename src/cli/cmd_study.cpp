@@ -15,12 +15,11 @@ void addStudyCommand(CLI::App& app) {
     StudyOptions study;
   };
   auto o = std::make_shared<Opts>();
-  auto* cmd = app.add_subcommand("study", "Run a validation study: report.md, plots and CSV data in --out");
-  std::string names;
-  for (const auto& n : studyNames()) names += (names.empty() ? "" : " | ") + n;
-  cmd->add_option("name", o->name, "Study: " + names)
-      ->required()
-      ->check(CLI::IsMember(studyNames()));
+  CLI::App* cmd = &app;
+  std::string list = "Studies:\n";
+  for (const StudyInfo& s : studies()) list += "  " + std::string(s.name) + ": " + s.summary + "\n";
+  cmd->footer(list);
+  cmd->add_option("name", o->name, "Study (listed below)")->required()->check(CLI::IsMember(studyNames()));
   cmd->add_option("--out", o->study.outDir, "Output folder")->required();
   cmd->add_option("--display", o->study.displayPath, "Display JSON (default: the paper's prototype)");
   cmd->add_flag("--quick", o->study.quick,

@@ -13,7 +13,7 @@
 namespace inim::cli {
 
 void addTriadsCommand(CLI::App& app) {
-  auto* triads = app.add_subcommand("triads", "RGB-wavelength triads: Zemax SDF export and EIA formation");
+  CLI::App* triads = &app;
   triads->require_subcommand(1);
 
   // inim triads export

@@ -1,28 +1,42 @@
 #pragma once
-// Each subcommand lives in its own cmd_*.cpp and registers itself on the app: it parses its
-// options into the library's settings, calls the library and prints. InputError thrown from
-// it becomes exit status 2 (main.cpp), its setting named by its flag (cli/options.h).
+// The commands, in one table: each lives in its own cmd_*.cpp, where its add function takes
+// the subcommand the table made (name and summary from here) and adds its options: it parses
+// them into the library's settings, calls the library and prints. InputError thrown from it
+// becomes exit status 2 (main.cpp), its setting named by its flag (cli/options.h). Adding a
+// command is a cmd_*.cpp and a line in commands.cpp.
 #include <CLI/CLI.hpp>
+#include <vector>
 
 namespace inim::cli {
 
-void addRenderCommand(CLI::App& app);     // inim render
-void addBenchCommand(CLI::App& app);      // inim bench
-void addDisplayCommand(CLI::App& app);    // inim display info
-void addRaysCommand(CLI::App& app);       // inim rays
-void addEiaCommand(CLI::App& app);        // inim eia
-void addTriadsCommand(CLI::App& app);     // inim triads export|form
-void addCompareCommand(CLI::App& app);    // inim compare A B
-void addLensCommand(CLI::App& app);       // inim lens info FILE
-void addViewCommand(CLI::App& app);       // inim view
-void addReferenceCommand(CLI::App& app);  // inim reference
-void addFig11Command(CLI::App& app);      // inim fig11
-void addCalibrateCommand(CLI::App& app);  // inim calibrate
-void addStudyCommand(CLI::App& app);      // inim study NAME
-void addQueryCommand(CLI::App& app);      // inim query --field F --rays R --out C
-void addTrainCommand(CLI::App& app);      // inim train --data DIR --out MODEL
-void addEvalCommand(CLI::App& app);       // inim eval --model MODEL --data DIR
-void addCaptureCommand(CLI::App& app);    // inim capture --scene FILE --out DIR
-void addPlaceCommand(CLI::App& app);      // inim place [--scene F | --field M]
+struct Command {
+  const char* name;
+  const char* summary;  // one line, as --help shows it
+  void (*add)(CLI::App& cmd);
+};
+
+// Every command, in the order --help lists them.
+const std::vector<Command>& commands();
+// Adds every command of the table to `app`.
+void addCommands(CLI::App& app);
+
+void addRenderCommand(CLI::App& cmd);
+void addDisplayCommand(CLI::App& cmd);
+void addRaysCommand(CLI::App& cmd);
+void addEiaCommand(CLI::App& cmd);
+void addPlaceCommand(CLI::App& cmd);
+void addTriadsCommand(CLI::App& cmd);
+void addViewCommand(CLI::App& cmd);
+void addReferenceCommand(CLI::App& cmd);
+void addFig11Command(CLI::App& cmd);
+void addCalibrateCommand(CLI::App& cmd);
+void addStudyCommand(CLI::App& cmd);
+void addQueryCommand(CLI::App& cmd);
+void addCaptureCommand(CLI::App& cmd);
+void addTrainCommand(CLI::App& cmd);
+void addEvalCommand(CLI::App& cmd);
+void addCompareCommand(CLI::App& cmd);
+void addLensCommand(CLI::App& cmd);
+void addBenchCommand(CLI::App& cmd);
 
 }  // namespace inim::cli

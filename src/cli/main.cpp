@@ -21,24 +21,7 @@ int main(int argc, char** argv) {
       [](const std::string& text) { inim::setMemoryLimitBytes(inim::parseByteSize(text, "--max-memory")); },
       "Largest allocation a command may make from its input, e.g. 8G or 512M (default: 16G, or 3/4 of the "
       "physical memory when that is less); larger sizes are refused before any work");
-  inim::cli::addRenderCommand(app);
-  inim::cli::addDisplayCommand(app);
-  inim::cli::addRaysCommand(app);
-  inim::cli::addEiaCommand(app);
-  inim::cli::addPlaceCommand(app);
-  inim::cli::addTriadsCommand(app);
-  inim::cli::addViewCommand(app);
-  inim::cli::addReferenceCommand(app);
-  inim::cli::addFig11Command(app);
-  inim::cli::addCalibrateCommand(app);
-  inim::cli::addStudyCommand(app);
-  inim::cli::addQueryCommand(app);
-  inim::cli::addCaptureCommand(app);
-  inim::cli::addTrainCommand(app);
-  inim::cli::addEvalCommand(app);
-  inim::cli::addCompareCommand(app);
-  inim::cli::addLensCommand(app);
-  inim::cli::addBenchCommand(app);
+  inim::cli::addCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const inim::Interrupted& e) {

@@ -1,24 +1,19 @@
 #include "display_view/view_settings.h"
 
+#include "display_view/estimators/panel_estimator.h"
+
 namespace inim {
 
 const char* spectralSamplingName(SpectralSampling s) {
   return s == SpectralSampling::Primaries ? "primaries" : "visible";
 }
 
-const char* panelEstimatorName(PanelEstimator e) {
-  switch (e) {
-    case PanelEstimator::PointSample: return "point";
-    case PanelEstimator::Footprint: return "footprint";
-    case PanelEstimator::Quadrature: return "quadrature";
-  }
-  return "?";
-}
+const char* panelEstimatorName(PanelEstimator e) { return panelEstimators()[size_t(e)].name; }
 
 bool parsePanelEstimator(const std::string& name, PanelEstimator& out) {
-  for (PanelEstimator e : {PanelEstimator::PointSample, PanelEstimator::Footprint, PanelEstimator::Quadrature})
-    if (name == panelEstimatorName(e)) {
-      out = e;
+  for (const PanelEstimatorInfo& e : panelEstimators())
+    if (name == e.name) {
+      out = e.kind;
       return true;
     }
   return false;

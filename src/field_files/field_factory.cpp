@@ -1,6 +1,9 @@
 #include "field_files/field_factory.h"
 
+#include <algorithm>
+
 #include "core/error.h"
+#include "core/file_kinds.h"
 #include "core/format.h"
 #include "core/output_file.h"
 #include "fitting/dataset_fit.h"
@@ -12,44 +15,64 @@
 
 namespace inim {
 
-const char* fieldKindName(FieldKind k) {
-  switch (k) {
-    case FieldKind::AnalyticScene: return "analytic scene";
-    case FieldKind::RadianceField: return "radiance field";
-    case FieldKind::ExternalColors: return "external field colours";
-    case FieldKind::GaussianSplats: return "Gaussian splats";
-  }
-  return "field";
+namespace {
+
+LoadedField loadAnalyticScene(const std::string& path) {
+  LoadedField f;
+  std::unique_ptr<AnalyticScene> scene = AnalyticScene::load(path);
+  f.analyticScene = scene.get();
+  f.field = std::move(scene);
+  return f;
 }
+
+LoadedField loadRadianceField(const std::string& path) {
+  LoadedField f;
+  std::unique_ptr<RadianceField> model = RadianceField::load(path);
+  f.placement = defaultPlacementFor(model->grid().metadata);
+  f.field = std::move(model);
+  return f;
+}
+
+// A splat scene has COLMAP axes and no units: defaultSplatFrame turns it into the display
+// frame (y up, z toward the viewer) and fits its central 96 % to the panel, so the field is in
+// display millimetres like an analytic scene and carries no placement of its own.
+LoadedField loadSplats(const std::string& path) {
+  LoadedField f;
+  Gaussians g = loadGaussians(path);
+  const SplatFrame frame = defaultSplatFrame(g);
+  auto splats = std::make_unique<SplatField>(std::move(g), frame);
+  f.splats = splats.get();
+  f.field = std::move(splats);
+  return f;
+}
+
+}  // namespace
+
+const std::vector<FieldKindInfo>& fieldKinds() {
+  static const std::vector<FieldKindInfo> kinds = {
+      {FieldKind::AnalyticScene, "analytic scene", "shapes, lights and spectral materials, path traced",
+       {FileKind::Json}, loadAnalyticScene},
+      {FieldKind::RadianceField, "radiance field", "a trained voxel radiance field, ray marched",
+       {FileKind::Inimrf}, loadRadianceField},
+      {FieldKind::ExternalColors, "external field colours", "the colours another renderer filled in for inim's rays",
+       {FileKind::Npy, FileKind::Exr}, nullptr},
+      {FieldKind::GaussianSplats, "Gaussian splats", "3D Gaussians, composited along each ray",
+       {FileKind::Ply, FileKind::Splat}, loadSplats},
+  };
+  return kinds;
+}
+
+const char* fieldKindName(FieldKind k) { return fieldKinds()[size_t(k)].name; }
 
 std::string defaultScenePath() { return dataPath("scenes/paper-fig7.json"); }
 
 LoadedField loadField(const std::string& path, const std::string& key) {
-  const std::string ext = lowerExtension(path);
-  LoadedField f;
-  f.path = path;
-  if (ext == ".json") {
-    std::unique_ptr<AnalyticScene> scene = AnalyticScene::load(path);
-    f.analyticScene = scene.get();
-    f.field = std::move(scene);
-    f.kind = FieldKind::AnalyticScene;
-    return f;
-  }
-  if (ext == ".inimrf") {
-    std::unique_ptr<RadianceField> model = RadianceField::load(path);
-    f.placement = defaultPlacementFor(model->grid().metadata);
-    f.field = std::move(model);
-    f.kind = FieldKind::RadianceField;
-    return f;
-  }
-  if (ext == ".ply" || ext == ".splat") {
-    // A splat scene has COLMAP axes and no units: defaultSplatFrame turns it into the display
-    // frame (y up, z toward the viewer) and fits its central 96 % to the panel, so the field is
-    // in display millimetres like an analytic scene and carries no placement of its own.
-    Gaussians g = loadGaussians(path);
-    const SplatFrame frame = defaultSplatFrame(g);
-    f.field = std::make_unique<SplatField>(std::move(g), frame);
-    f.kind = FieldKind::GaussianSplats;
+  const std::optional<FileKind> file = fileKindOf(path);
+  for (const FieldKindInfo& k : fieldKinds()) {
+    if (!k.load || std::find(k.files.begin(), k.files.end(), file) == k.files.end()) continue;
+    LoadedField f = k.load(path);
+    f.path = path;
+    f.kind = k.kind;
     return f;
   }
   throw InputError("", key, "\"" + path + "\"",

@@ -10,7 +10,9 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "core/file_kinds.h"
 #include "field/field.h"
 #include "field/placement.h"
 #include "field/ray_table.h"
@@ -18,10 +20,9 @@
 namespace inim {
 
 class AnalyticScene;
+class SplatField;
 
 enum class FieldKind { AnalyticScene, RadianceField, ExternalColors, GaussianSplats };
-// "analytic scene", "radiance field", "external field colours", "Gaussian splats"
-const char* fieldKindName(FieldKind k);
 
 struct LoadedField {
   std::unique_ptr<Field> field;
@@ -30,10 +31,25 @@ struct LoadedField {
   // The field itself when it is an analytic scene (its integrator settings can be changed),
   // else null.
   AnalyticScene* analyticScene = nullptr;
+  // The field itself when it is Gaussian splats (its traversal counters), else null.
+  const SplatField* splats = nullptr;
   // The field's own default placement: a trained model carries one (its units); absent for
   // analytic scenes, which are in display millimetres.
   std::optional<Placement> placement;
 };
+
+// The field kinds, in the order of FieldKind: adding a kind is a loader and a line here.
+// ExternalColors has no loader of its own (loadFieldColors: it needs the run's query count).
+struct FieldKindInfo {
+  FieldKind kind;
+  const char* name;         // "analytic scene"
+  const char* description;  // one line
+  std::vector<FileKind> files;
+  LoadedField (*load)(const std::string& path);
+};
+const std::vector<FieldKindInfo>& fieldKinds();
+// "analytic scene", "radiance field", "external field colours", "Gaussian splats"
+const char* fieldKindName(FieldKind k);
 
 // scenes/paper-fig7.json under the data folder: the field every tool shows by default.
 std::string defaultScenePath();

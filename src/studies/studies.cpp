@@ -10,19 +10,32 @@ const StudyValue* StudyReport::find(const std::string& name) const {
   return nullptr;
 }
 
+const std::vector<StudyInfo>& studies() {
+  static const std::vector<StudyInfo> table = {
+      {"flip-onset", "own-EI fraction against viewing angle; the flip against psi/2", runFlipOnset},
+      {"image-plane", "a panel point traced through the real lenslet; the sharpest plane against H' + gf/(g-f)",
+       runImagePlane},
+      {"depth-sharpness", "a slanted edge's MTF50 against depth, real and ideal MLA", runDepthSharpness},
+      {"braiding", "a point's facets seen by a scanning eye; the facet jump against depth", runBraiding},
+      {"telecentric", "a bar's reconstructed width, parallel against toed-in layout", runTelecentric},
+      {"nerf-pipeline", "capture, train, EIA and view of the default scene against the scene itself",
+       runNerfPipeline},
+      {"colour-calibration", "the colour chain characterised, corrected and verified on hold-out colours",
+       runColourCalibration},
+      {"gap-tradeoff", "the gap swept around f: error budget and error against depth per gap", runGapTradeoff},
+  };
+  return table;
+}
+
 std::vector<std::string> studyNames() {
-  return {"flip-onset", "image-plane", "depth-sharpness", "braiding", "telecentric", "nerf-pipeline", "colour-calibration", "gap-tradeoff"};
+  std::vector<std::string> names;
+  for (const StudyInfo& s : studies()) names.push_back(s.name);
+  return names;
 }
 
 StudyReport runStudy(const std::string& name, const StudyOptions& o) {
-  if (name == "flip-onset") return runFlipOnset(o);
-  if (name == "image-plane") return runImagePlane(o);
-  if (name == "depth-sharpness") return runDepthSharpness(o);
-  if (name == "braiding") return runBraiding(o);
-  if (name == "telecentric") return runTelecentric(o);
-  if (name == "nerf-pipeline") return runNerfPipeline(o);
-  if (name == "colour-calibration") return runColourCalibration(o);
-  if (name == "gap-tradeoff") return runGapTradeoff(o);
+  for (const StudyInfo& s : studies())
+    if (name == s.name) return s.run(o);
   std::string names;
   for (const auto& n : studyNames()) names += (names.empty() ? "" : ", ") + n;
   throw InputError("", "study", name, "one of " + names);

@@ -75,7 +75,15 @@ StudyReport runColourCalibration(const StudyOptions& o);
 // every gap; the toed-in ramp's error lower near L than far from it.
 StudyReport runGapTradeoff(const StudyOptions& o);
 
-// Names accepted by runStudy, in order.
+// The studies, in one table (studies.cpp): adding a study is its file, its run function
+// declared above and a line in the table; `inim study --help` and the docs read the table.
+struct StudyInfo {
+  const char* name;     // "flip-onset": the command's argument and the folder under validation/
+  const char* summary;  // one line
+  StudyReport (*run)(const StudyOptions& o);
+};
+const std::vector<StudyInfo>& studies();
+// The names of studies(), in order.
 std::vector<std::string> studyNames();
 // InputError for an unknown name.
 StudyReport runStudy(const std::string& name, const StudyOptions& o);

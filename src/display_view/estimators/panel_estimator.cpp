@@ -27,13 +27,29 @@ EstimatorContext::EstimatorContext(const CameraModel& camera, const CameraSensor
       cameraDispersive(camera.isDispersive()),
       channels(sensor, panel, anythingDispersive(camera, mla, panel, settings), settings.spectral) {}
 
+namespace {
+
+template <class E>
+std::unique_ptr<PixelEstimator> make(const EstimatorContext& context) {
+  return std::make_unique<E>(context);
+}
+
+}  // namespace
+
+const std::vector<PanelEstimatorInfo>& panelEstimators() {
+  static const std::vector<PanelEstimatorInfo> table = {
+      {PanelEstimator::PointSample, "point", "Monte Carlo: the panel's radiance where each camera ray lands",
+       make<PointEstimator>},
+      {PanelEstimator::Footprint, "footprint", "Monte Carlo: the panel averaged over each ray's footprint box",
+       make<FootprintEstimator>},
+      {PanelEstimator::Quadrature, "quadrature", "deterministic: the pixel and aperture integrated by tabled quadrature",
+       make<QuadratureEstimator>},
+  };
+  return table;
+}
+
 std::unique_ptr<PixelEstimator> makePanelEstimator(PanelEstimator kind, const EstimatorContext& context) {
-  switch (kind) {
-    case PanelEstimator::PointSample: return std::make_unique<PointEstimator>(context);
-    case PanelEstimator::Footprint: return std::make_unique<FootprintEstimator>(context);
-    case PanelEstimator::Quadrature: return std::make_unique<QuadratureEstimator>(context);
-  }
-  return nullptr;
+  return panelEstimators()[size_t(kind)].make(context);
 }
 
 }  // namespace inim

@@ -11,6 +11,7 @@
 // TileEstimator that one thread owns for one tile, so images are bit-identical for any thread
 // count. docs/view-estimators.md derives each estimator and records measurements.
 #include <memory>
+#include <vector>
 
 #include "camera/camera_model.h"
 #include "camera/sensor.h"
@@ -70,6 +71,16 @@ class PixelEstimator {
   // Adds the statistics of the work done once per image (tables) to `stats`.
   virtual void addStats(ViewStats& /*stats*/) const {}
 };
+
+// The panel estimators, in one table in the order of PanelEstimator: adding one is its file, an
+// enum value and a line in the table (docs/view-estimators.md documents each by name).
+struct PanelEstimatorInfo {
+  PanelEstimator kind;
+  const char* name;     // as --estimator takes it
+  const char* summary;  // one line
+  std::unique_ptr<PixelEstimator> (*make)(const EstimatorContext& context);
+};
+const std::vector<PanelEstimatorInfo>& panelEstimators();
 
 // The estimator `kind` for `context` (which must outlive it). InputError for settings the
 // estimator cannot use (named by their ViewSettings key in snake_case).
