@@ -81,6 +81,21 @@ std::unique_ptr<RealLensCameraModel> RealLensCameraModel::atPose(const ViewingPo
   return m;
 }
 
+std::unique_ptr<CameraModel> CameraModel::sameLensAt(const ViewingPose&, const SensorGeometry&,
+                                                    const RealLensSettings&) const {
+  return nullptr;
+}
+
+std::unique_ptr<CameraModel> RealLensCameraModel::sameLensAt(const ViewingPose& pose, const SensorGeometry& sensor,
+                                                            const RealLensSettings& s) const {
+  const SensorGeometry& mine = this->sensor();
+  if (mine.widthPx != sensor.widthPx || mine.heightPx != sensor.heightPx || mine.pitchMm != sensor.pitchMm ||
+      settings_.fNumber != s.fNumber || settings_.focusDistanceMm != s.focusDistanceMm ||
+      settings_.focusMode != s.focusMode || settings_.fresnel != s.fresnel)
+    return nullptr;
+  return atPose(pose);
+}
+
 float CameraModel::generateRay(int col, int row, Rng& rng, float lambdaNm, Ray& out) const {
   const float jx = rng.uniform(), jy = rng.uniform();
   const float u = rng.uniform(), v = rng.uniform();

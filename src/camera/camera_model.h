@@ -40,6 +40,17 @@ struct ViewingPose {
 enum class CameraModelKind { Pinhole, ThinLens, RealLens };
 const char* cameraModelName(CameraModelKind k);  // "pinhole", "thin-lens", "real-lens"
 
+// How a real-lens camera is stopped down and focused.
+struct RealLensSettings {
+  double fNumber = 0.0;          // 0: the design's stop
+  double focusDistanceMm = 0.0;  // from the entrance pupil; 0: |lookAt - eye|; inf: infinity
+  FocusMode focusMode = FocusMode::BestRms;
+  double focusWavelengthNm = kLensReferenceLambdaNm;
+  bool fresnel = false;          // Fresnel transmittance at every surface (off: ideal coatings)
+  ExitPupilBounds::Settings pupil;  // empty wavelengths: the focus wavelength, plus 360 and
+                                    // 830 nm for dispersive glass
+};
+
 class CameraModel {
  public:
   virtual ~CameraModel() = default;
@@ -69,6 +80,11 @@ class CameraModel {
   // the integral of the weight over the domain is the mean of generateRay's weight over uLens.
   virtual bool apertureDomain(Vec2 pixel, Vec2d& lo, Vec2d& hi) const;
   virtual float apertureRay(Vec2 pixel, const Vec2d& a, float lambdaNm, Ray& out) const;
+  // This camera moved to `pose`, when a real lens with this sensor and these settings would
+  // be focused and scanned exactly as this one was (so nothing need be traced again); null
+  // otherwise, and for models that precompute nothing.
+  virtual std::unique_ptr<CameraModel> sameLensAt(const ViewingPose& pose, const SensorGeometry& sensor,
+                                                  const RealLensSettings& settings) const;
 
   const SensorGeometry& sensor() const { return sensor_; }
   const ViewingPose& pose() const { return pose_; }
@@ -137,15 +153,7 @@ class ThinLensCameraModel final : public CameraModel {
 
 class RealLensCameraModel final : public CameraModel {
  public:
-  struct Settings {
-    double fNumber = 0.0;          // 0: the design's stop
-    double focusDistanceMm = 0.0;  // from the entrance pupil; 0: |lookAt - eye|; inf: infinity
-    FocusMode focusMode = FocusMode::BestRms;
-    double focusWavelengthNm = kLensReferenceLambdaNm;
-    bool fresnel = false;          // Fresnel transmittance at every surface (off: ideal coatings)
-    ExitPupilBounds::Settings pupil;  // empty wavelengths: the focus wavelength, plus 360 and
-                                      // 830 nm for dispersive glass
-  };
+  using Settings = RealLensSettings;
 
   // Sets the f-number, focuses by moving the sensor and precomputes the exit-pupil bounds
   // and the centre irradiance. Throws InputError for an unreachable f-number or focus.
@@ -161,6 +169,8 @@ class RealLensCameraModel final : public CameraModel {
   double horizontalFovDeg() const override;
   bool apertureDomain(Vec2 pixel, Vec2d& lo, Vec2d& hi) const override;
   float apertureRay(Vec2 pixel, const Vec2d& a, float lambdaNm, Ray& out) const override;
+  std::unique_ptr<CameraModel> sameLensAt(const ViewingPose& pose, const SensorGeometry& sensor,
+                                          const RealLensSettings& settings) const override;
 
   // A ray from the sensor point (lens x, y, on the sensor plane) toward `rearPoint` on the
   // rear-vertex plane, traced out of the lens; returns cos^4(theta) x Fresnel (0 if blocked),

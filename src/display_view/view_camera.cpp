@@ -46,12 +46,8 @@ std::unique_ptr<CameraModel> makeViewCamera(const CameraDescription& c, const Di
     s.focusDistanceMm = focus;
     s.focusMode = c.focusMode;
     s.fresnel = c.fresnel;
-    const auto* same = dynamic_cast<const RealLensCameraModel*>(samePrecomputed);
-    if (same && same->sensor().widthPx == sensor.widthPx && same->sensor().heightPx == sensor.heightPx &&
-        same->sensor().pitchMm == sensor.pitchMm && same->settings().fNumber == s.fNumber &&
-        same->settings().focusDistanceMm == s.focusDistanceMm && same->settings().focusMode == s.focusMode &&
-        same->settings().fresnel == s.fresnel)
-      return same->atPose(pose);
+    if (samePrecomputed)
+      if (auto moved = samePrecomputed->sameLensAt(pose, sensor, s)) return moved;
     return std::make_unique<RealLensCameraModel>(c.lens, sensor, pose, s);
   }
   LensSystem lens = c.lens;
