@@ -1,8 +1,7 @@
 // inim study flip-onset: turning the display, the view through a lenslet flips to the
 // neighbouring elemental image at half the viewing angle, psi / 2 = atan(P / (2 g))
 // (docs/design.md) without cover glass; the panel's cover glass (seen at the optical gap
-// g_eff = g - t (1 - 1/n)) widens it to atan(P / (2 g_eff)). Method of
-// tests/display_view/test_flip_onset.cpp, swept over 0-12 degrees, the landing point carried through the
+// g_eff = g - t (1 - 1/n)) widens it to atan(P / (2 g_eff)). Swept over 0-12 degrees, the landing point carried through the
 // glass by PanelEmitter::emissionPointPx (as the view simulation does), with the glass switched
 // off as the control.
 #include <cmath>
@@ -173,7 +172,8 @@ std::string predictionText(const FlipSetup& setup) {
 }
 
 std::string methodText(const FlipSetup& setup) {
-  return "(that of `tests/display_view/test_flip_onset.cpp`). For each viewing angle θ from 0° to 12° in 0.1° steps, a "
+  return "(its verdict asserted by `Studies.FlipOnsetWithinTenPercentOfHalfViewingAngle` in "
+         "`tests/studies/test_studies.cpp`). For each viewing angle θ from 0° to 12° in 0.1° steps, a "
          "parallel bundle of 48 × 48 rays, coming from the +x side at θ in the x-z plane, fills the centre lenslet (" +
          std::to_string(setup.L.eiCols / 2) + ", " + std::to_string(setup.L.eiRows / 2) + ") and is traced backward to the "
          "emitting plane z = −g at 550 nm (`MlaModel::traceToPanel`; the real MLA with stochastic Fresnel, fixed "

@@ -1,6 +1,5 @@
 // inim study image-plane: the lenslets image the panel at the reference image plane
-// L = g f / (g - f) in front of the viewer-side principal plane H' (docs/design.md). Method of
-// tests/mla_optics/test_reference_image_plane.cpp: a panel point under the centre lenslet traced
+// L = g f / (g - f) in front of the viewer-side principal plane H' (docs/design.md). Method: a panel point under the centre lenslet traced
 // forward through the real lenslet; the plane where the bundle's RMS radius is smallest. The
 // lens-law checks leave the panel's cover glass out (the point emits in air at z = -g); the
 // display as configured is checked too, the point emitting under the cover glass, against
@@ -247,7 +246,8 @@ std::string predictionText(const PlaneSetup& setup) {
 }
 
 std::string methodText(const PlaneSetup& setup) {
-  return "(that of `tests/mla_optics/test_reference_image_plane.cpp`). A point on the panel (z = −g) under the centre lenslet "
+  return "(its verdict asserted by `Studies.ImagePlaneMatchesThickLensPrediction` in "
+         "`tests/studies/test_studies.cpp`). A point on the panel (z = −g) under the centre lenslet "
          "emits 41 × 41 rays, uniform in the tangents of half-angles up to 1° (paraxial) or up to atan(P / 2g) (the full "
          "aperture); each is traced forward through the real lenslet at n_d (587.56 nm, Weighted Fresnel) and kept if "
          "it leaves through the centre lenslet's cap. The RMS radius of the bundle about its centroid is evaluated on "

@@ -124,7 +124,7 @@ def main():
             README_dot_md=lambda t: t + "See `src/field/field.{h,cpp}`.\n"), 1,
             [r"path not found: src/field/field\.\{h,cpp\}"]),
         case("a stage-relative source file that is gone fails", changed(
-            docs__other_dot_md=lambda t: t + "The old `display_view/ideal_mla.h`.\n"), 1,
+            docs__other_dot_md=lambda t: t + "The old `view/ideal_mla.h`.\n"), 1,
             [r"docs/other\.md:\d+: source file not found under src/ or tests/: view/ideal_mla\.h"]),
         case("a missing anchor fails", changed(
             docs__other_dot_md=lambda t: t + "[gone](pipeline.md#no-such-heading)\n"), 1,

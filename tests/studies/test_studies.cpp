@@ -1,6 +1,6 @@
 // The validation studies run end to end into a temporary folder: every file is written and the
-// verdict values are those the physics tests assert (tests/display_view/test_flip_onset.cpp,
-// tests/mla_optics/test_reference_image_plane.cpp); the pipeline studies (depth-sharpness, braiding,
+// verdict values are checked here (the flip onset and the image plane in their full form, as
+// the physics tests once asserted them); the pipeline studies (depth-sharpness, braiding,
 // telecentric, nerf-pipeline) run in their quick form (`inim study NAME --quick`), and each test
 // checks every verdict value against its prediction and tolerance (or bound). The full forms are
 // what `inim study NAME --out validation/NAME` runs.
