@@ -160,7 +160,6 @@ void benchEiaField(benchmark::State& state) { fieldLoop(state, eiaContext().quer
 void eiaLoop(benchmark::State& state, const Field& field) {
   EiaContext& e = eiaContext();
   SynthesisSettings s;
-  s.autoExposure = true;
   s.progress = false;
   for (auto _ : state) {
     SynthesisResult r = synthesizeEia(e.layout, e.display.panel, field, s);

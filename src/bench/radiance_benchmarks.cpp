@@ -44,7 +44,6 @@ void registerEiaQuery(const RadianceBenchSettings& o) {
     SynthesisSettings s;
     s.placement = p;
     s.progress = false;
-    s.autoExposure = true;
     SynthesisResult r;
     for (auto _ : state) r = synthesizeEia(L, d.panel, *field, s);
     Results& res = results();

@@ -36,7 +36,6 @@ ViewContext& builtViewContext() {
   if (!v.dm) {
     EiaContext& e = eiaContext();
     SynthesisSettings s;
-    s.autoExposure = true;
     s.progress = false;
     s.spp = 4;
     SynthesisResult r = synthesizeEia(e.layout, e.display.panel, *sceneContext().scene, s);

@@ -2,6 +2,7 @@
 // corrections, export the panel-side one (src/runs/calibrate_run.h).
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "cli/commands.h"
 #include "cli/options.h"
@@ -13,13 +14,11 @@ namespace inim::cli {
 void addCalibrateCommand(CLI::App& app) {
   struct Opts {
     CalibrateSettings s;
-    std::string white = "none", gamut = "clip";
+    std::optional<std::string> white, gamut;  // absent: the library's defaults
     RunOptions run;
   };
   auto o = std::make_shared<Opts>();
-  auto* cmd = app.add_subcommand("calibrate",
-                                 "Colour calibration through the simulated chain: characterise, find where the error "
-                                 "comes from, fit, verify on hold-out colours, export .cube/CLF/OCIO");
+  CLI::App* cmd = &app;
   CalibrateSettings& s = o->s;
   cmd->add_option("--out", s.outDir, "Output folder")->required();
   cmd->add_option("--display", s.displayPath, "Display JSON (default: the paper's prototype)");
@@ -36,8 +35,9 @@ void addCalibrateCommand(CLI::App& app) {
   cmd->add_option("--field-space", s.fieldSpace,
                   "The field's colour space: lin_rec709, display_p3, acescg or spectral")->capture_default_str();
   cmd->add_option("--white-balance", o->white, "The EIA's white gains: none (colorimetric) or d65 (the paper's path)")
-      ->capture_default_str();
-  cmd->add_option("--gamut", o->gamut, "Gamut mapping: clip or desaturate")->capture_default_str();
+      ->default_str(s.whiteBalanceD65 ? "d65" : "none");
+  cmd->add_option("--gamut", o->gamut, "Gamut mapping: clip or desaturate")
+      ->default_str(s.gamut == GamutMapping::Clip ? "clip" : "desaturate");
   cmd->add_option("--grid-levels", s.gridLevels, "Levels per channel of the drive grid used to fit")->capture_default_str();
   cmd->add_option("--holdout", s.holdOutInGamut, "Hold-out colours from the panel's gamut")->capture_default_str();
   cmd->add_option("--holdout-out-of-gamut", s.holdOutOutOfGamut, "Hold-out colours outside it (inside Rec.2020)")
@@ -52,10 +52,10 @@ void addCalibrateCommand(CLI::App& app) {
   cmd->add_option("--direct-checks", s.directChecks, "Patches rendered directly to check the linear chain model")
       ->capture_default_str();
   addRunOptions(cmd, o->run, [o] {
-    o->s.seed = o->run.seed;
-    o->s.render.view.seed = o->run.seed;
-    o->s.whiteBalanceD65 = parseWhiteBalanceD65(o->white);
-    o->s.gamut = parseGamut(o->gamut);
+    o->run.applySeed(o->s.seed);
+    o->run.applySeed(o->s.render.view.seed);
+    if (o->white) o->s.whiteBalanceD65 = parseWhiteBalanceD65(*o->white);
+    if (o->gamut) o->s.gamut = parseGamut(*o->gamut);
     CalibrateObserver observer;
     observer.poseDone = [](const PoseResponse& p) {
       std::printf("pose %-7s %-7s %7lld px measured, %.1f s\n", p.pose.name.c_str(), p.pose.label.c_str(),

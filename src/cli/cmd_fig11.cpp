@@ -17,8 +17,7 @@ void addFig11Command(CLI::App& app) {
     RunOptions run;
   };
   auto o = std::make_shared<Opts>();
-  auto* cmd = app.add_subcommand(
-      "fig11", "Reproduce the paper's Fig. 11: EIA, five reconstructed and five reference views, contact sheet, metrics");
+  CLI::App* cmd = &app;
   cmd->add_option("--out", o->s.outDir, "Output folder")->required();
   cmd->add_option("--display", o->s.displayPath, "Display JSON (default: the paper's prototype)");
   cmd->add_option("--scene,--field", o->s.fieldPath,
@@ -64,35 +63,20 @@ void addFig11Command(CLI::App& app) {
   addPlacementOptions(cmd, o->place);
   addRunOptions(cmd, o->run, [o] {
     o->s.mla = o->mla == "ideal" ? MlaKind::Ideal : MlaKind::Real;
-    o->s.seed = o->run.seed;
+    o->run.applySeed(o->s.seed);
     o->s.placement = placementOverride(o->place);
     Fig11Observer observer;
-    observer.eiaDone = [](const Fig11Result& r) {
-      std::printf("EIA:         %d x %d px from %s, %.2f s\n", r.eiaWidth, r.eiaHeight, r.fieldPath.c_str(), r.eiaSeconds);
-      std::printf("calibration: %s\n", r.calibration.c_str());
-      std::printf("%-8s %-14s %9s %7s %9s %9s %8s %8s\n", "view", "pose", "PSNR dB", "SSIM", "dE mean", "dE p95",
-                  "rec s", "ref s");
-    };
+    observer.eiaDone = [](const Fig11Result& r) { std::printf("%s", fig11EiaText(r).c_str()); };
     observer.viewDone = [](const Fig11View& v) {
-      if (!v.displayInView) std::fprintf(stderr, "inim: warning: the display is out of view at %s\n", v.pose.describe().c_str());
-      if (!v.hasMetrics) {
-        std::fprintf(stderr, "inim: warning: the display is out of view at %s; no metrics\n", v.pose.describe().c_str());
-        return;
-      }
-      const ImageMetrics& m = v.metrics;
-      std::printf("%-8s %-14s %9s %7.4f %9.3f %9.3f %8.1f %8.1f\n", v.name.c_str(), v.label.c_str(),
-                  formatPsnr(m.psnrDb).c_str(), m.ssim, m.deltaE.mean, m.deltaE.p95, v.reconstructionSeconds,
-                  v.referenceSeconds);
+      std::fprintf(stderr, "%s", fig11ViewWarnings(v).c_str());
+      std::printf("%s", fig11ViewText(v).c_str());
     };
     observer.budgetDone = [](const PoseBudget& b) {
       std::printf("  budget %-7s %s\n", b.pose.c_str(), budgetLine(b).c_str());
       std::fflush(stdout);
     };
     runFig11(o->s, observer);
-    std::printf("wrote:       %s/{eia.exr,eia.png,view_*.exr|png,reference_*.exr|png,contact_sheet.png,metrics.json,"
-                "metrics.csv%s%s}\n", o->s.outDir.c_str(),
-                o->s.depthError ? ",depth_error_*.csv,reference_*_depth.exr,depth_error.png" : "",
-                o->s.budget ? ",budget.json,budget.csv,budget.png" : "");
+    std::printf("%s", fig11WrittenText(o->s).c_str());
   });
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli/commands.h"
@@ -15,9 +16,11 @@ namespace inim::cli {
 
 namespace {
 
+// The dataset options write DatasetOptions directly; the background is parsed when given.
 struct DataArgs {
-  std::string data, background = "white";
-  int downscale = 1, holdoutEvery = 8;
+  std::string data;
+  DatasetOptions options;
+  std::optional<std::string> background;
 };
 
 void addDataOptions(CLI::App* cmd, DataArgs& a) {
@@ -25,45 +28,37 @@ void addDataOptions(CLI::App* cmd, DataArgs& a) {
                   "Dataset: a folder with transforms.json / transforms_train.json (Blender, Nerfstudio, instant-ngp) "
                   "or a Middlebury *_par.txt, or the file itself")
       ->required();
-  cmd->add_option("--downscale", a.downscale, "Integer image downscale factor (intrinsics follow)")->capture_default_str();
-  cmd->add_option("--holdout-every", a.holdoutEvery, "Frame i is held out for testing when i % N == 0 (0: none)")
+  cmd->add_option("--downscale", a.options.downscale, "Integer image downscale factor (intrinsics follow)")->capture_default_str();
+  cmd->add_option("--holdout-every", a.options.holdoutEvery, "Frame i is held out for testing when i % N == 0 (0: none)")
       ->capture_default_str();
   cmd->add_option("--background", a.background, "What transparent pixels composite onto: white, black or r,g,b")
-      ->capture_default_str();
+      ->default_str("white");
 }
 
 DatasetOptions datasetOptions(const DataArgs& a) {
-  DatasetOptions o;
-  o.downscale = a.downscale;
-  o.holdoutEvery = a.holdoutEvery;
-  o.background = parseBackground(a.background);
+  DatasetOptions o = a.options;
+  if (a.background) o.background = parseBackground(*a.background);
   return o;
 }
 
+// The options write TrainingRunSettings directly; the lists are parsed when given.
 struct TrainOpts {
   DataArgs data;
-  std::string out, log, resolutions = "64,128,160", stageStarts;
-  int iterations = 3000, batch = 4096, shDegree = 1;
-  double timeBudget = 0;
+  TrainingRunSettings s;
+  std::optional<std::string> resolutions, stageStarts;
   bool quiet = false;
   RunOptions run;
 };
 
 void runTrain(const TrainOpts& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  TrainingRunSettings s;
+  TrainingRunSettings s = o.s;
   s.dataPath = o.data.data;
-  s.modelPath = o.out;
-  s.logPath = o.log;
   TrainConfig& cfg = s.config;
-  cfg.iterations = o.iterations;
-  cfg.batchSize = o.batch;
-  cfg.shDegree = o.shDegree;
-  cfg.timeBudgetSeconds = o.timeBudget;
-  cfg.seed = o.run.seed;
-  cfg.resolutions = parseIntList(o.resolutions, "resolutions");
-  cfg.stageStarts = o.stageStarts.empty() ? defaultStageStarts(o.iterations, int(cfg.resolutions.size()))
-                                          : parseIntList(o.stageStarts, "stage_starts");
+  o.run.applySeed(cfg.seed);
+  if (o.resolutions) cfg.resolutions = parseIntList(*o.resolutions, "resolutions");
+  cfg.stageStarts = o.stageStarts ? parseIntList(*o.stageStarts, "stage_starts")
+                                  : defaultStageStarts(cfg.iterations, int(cfg.resolutions.size()));
   s.data = datasetOptions(o.data);
   if (!o.quiet)
     s.loaded = [](const Dataset& data) {
@@ -86,18 +81,20 @@ void runTrain(const TrainOpts& o) {
 
 void addTrainCommand(CLI::App& app) {
   auto o = std::make_shared<TrainOpts>();
-  auto* cmd = app.add_subcommand(
-      "train", "Train a voxel-grid radiance field (density + spherical-harmonic colour, Adam, TV, coarse to fine) "
-               "from a posed photo dataset, on the CPU");
+  CLI::App* cmd = &app;
   addDataOptions(cmd, o->data);
-  cmd->add_option("--out", o->out, "Model file (.inimrf)")->required();
-  cmd->add_option("--log", o->log, "CSV log of iteration, loss, PSNR, time (default: beside --out, .csv)");
-  cmd->add_option("--iterations", o->iterations, "Training iterations")->capture_default_str();
-  cmd->add_option("--batch", o->batch, "Rays per iteration")->capture_default_str();
-  cmd->add_option("--time-budget-s", o->timeBudget, "Also stop after this many seconds (then not deterministic)");
-  cmd->add_option("--sh-degree", o->shDegree, "Spherical-harmonic degree of the colour, 0-2")->capture_default_str();
+  cmd->add_option("--out", o->s.modelPath, "Model file (.inimrf)")->required();
+  cmd->add_option("--log", o->s.logPath, "CSV log of iteration, loss, PSNR, time (default: beside --out, .csv)");
+  cmd->add_option("--iterations", o->s.config.iterations, "Training iterations")->capture_default_str();
+  cmd->add_option("--batch", o->s.config.batchSize, "Rays per iteration")->capture_default_str();
+  cmd->add_option("--time-budget-s", o->s.config.timeBudgetSeconds, "Also stop after this many seconds (then not deterministic)");
+  cmd->add_option("--sh-degree", o->s.config.shDegree, "Spherical-harmonic degree of the colour, 0-2")->capture_default_str();
   cmd->add_option("--resolutions", o->resolutions, "Grid resolution (longest side, vertices) of each stage")
-      ->capture_default_str();
+      ->default_str([&] {
+        std::string list;
+        for (int r : o->s.config.resolutions) list += (list.empty() ? "" : ",") + std::to_string(r);
+        return list;
+      }());
   cmd->add_option("--stage-starts", o->stageStarts,
                   "Iteration at which each stage starts (default: 0, then 1/6 and 1/2 of the iterations)");
   cmd->add_flag("--quiet", o->quiet, "Print nothing but warnings");
@@ -112,7 +109,7 @@ void addEvalCommand(CLI::App& app) {
     RunOptions run;
   };
   auto o = std::make_shared<Opts>();
-  auto* cmd = app.add_subcommand("eval", "Held-out PSNR and SSIM of a trained radiance field, and its rendered views");
+  CLI::App* cmd = &app;
   cmd->add_option("--model", o->model, "Model file (.inimrf)")->required();
   addDataOptions(cmd, o->data);
   cmd->add_option("--out", o->out, "Folder for the rendered views (PNG, beside the photos) and metrics.json/.csv");

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 
@@ -24,35 +26,27 @@ namespace {
 // Options shared by `view` and `reference`: camera, pose, image size, samples, outputs.
 struct CameraPoseOpts {
   CameraRunSettings s;
-  std::string cameraModel;
-  double distanceMm = 0.0;
-  int spp = 16;
+  std::optional<int> spp;  // absent: the library's (ViewSettings, ReferenceSettings)
   bool quiet = false;
   RunOptions run;
-  CLI::Option *distanceOpt = nullptr, *sppOpt = nullptr, *focusOpt = nullptr, *widthOpt = nullptr,
-              *heightOpt = nullptr;
-  // The settings with the options that need their own parsing applied.
+  CLI::Option *focusOpt = nullptr, *widthOpt = nullptr, *heightOpt = nullptr;
+  // The settings, checked: 0 means "the default" inside; given on the command line it is a mistake.
   CameraRunSettings settings() const {
-    CameraRunSettings c = s;
-    if (!cameraModel.empty())
-      c.model = cameraModel == "pinhole"     ? CameraModelKind::Pinhole
-                : cameraModel == "thin-lens" ? CameraModelKind::ThinLens
-                                             : CameraModelKind::RealLens;
-    if (distanceOpt->count()) c.distanceMm = distanceMm;
-    // 0 means "the default" inside; given on the command line it is a mistake.
     if (focusOpt->count() && !(s.focusMm > 0.0))
       throw InputError("", "focus_mm", formatNumber(s.focusMm), "a focus distance > 0 mm");
     for (auto [opt, v, key] : {std::tuple{widthOpt, s.width, "width"}, {heightOpt, s.height, "height"}})
       if (opt->count() && v < 1) throw InputError("", key, std::to_string(v), "a whole number of pixels >= 1");
-    return c;
+    return s;
   }
 };
 
 void addCameraPoseOptions(CLI::App* cmd, CameraPoseOpts& o) {
   cmd->add_option("--camera", o.s.camera, "Camera: a name in optics/cameras/ or a JSON file (default: alvium-1800-u-500c)");
-  cmd->add_option("--camera-model", o.cameraModel, "real-lens, thin-lens or pinhole (default: the camera file's)")
-      ->check(CLI::IsMember({"real-lens", "thin-lens", "pinhole"}));
-  o.distanceOpt = cmd->add_option("--distance-mm", o.distanceMm,
+  const std::map<std::string, CameraModelKind> models = {
+      {"real-lens", CameraModelKind::RealLens}, {"thin-lens", CameraModelKind::ThinLens}, {"pinhole", CameraModelKind::Pinhole}};
+  cmd->add_option("--camera-model", o.s.model, "real-lens, thin-lens or pinhole (default: the camera file's)")
+      ->transform(CLI::CheckedTransformer(models));
+  cmd->add_option("--distance-mm", o.s.distanceMm,
                                   "Camera (entrance pupil) to display centre, mm (default: the camera file's distance_mm)");
   cmd->add_option("--rot-h-deg", o.s.rotHDeg,
                   "Display rotation about its vertical axis, degrees; + turns its right edge away from the camera")
@@ -65,7 +59,9 @@ void addCameraPoseOptions(CLI::App* cmd, CameraPoseOpts& o) {
   o.widthOpt = cmd->add_option("--width", o.s.width, "Image width in pixels (default: the sensor's; a smaller width keeps the field "
                                         "of view and scales the pixel pitch)");
   o.heightOpt = cmd->add_option("--height", o.s.height, "Image height in pixels (default: the sensor's aspect ratio)");
-  o.sppOpt = cmd->add_option("--spp", o.spp, "Samples per pixel")->capture_default_str();
+  cmd->add_option("--spp", o.spp,
+                  "Samples per pixel (default: 1 stratum for the quadrature estimator, " +
+                      std::to_string(ViewSettings{}.spp) + " samples for the sampled ones)");
   cmd->add_option("--exposure", o.s.exposure,
                   "Exposure factor applied to the EXR and the PNG, or auto (99th percentile of the brightest channel "
                   "-> 0.9)")
@@ -77,50 +73,45 @@ void addCameraPoseOptions(CLI::App* cmd, CameraPoseOpts& o) {
 
 // `inim view --reference`: the scene, its placement and the budget's settings.
 struct ViewReferenceOpts {
+  ViewReferenceSettings rs;  // the settings the options write directly
   bool on = false, noBudget = false;
-  std::string scene, run, budgetCalibration;
+  std::optional<std::string> scene;
+  std::string run;
   PlacementArgs place;
-  double eiaExposure = 0.0;
-  int referenceSpp = ViewReferenceSettings{}.referenceSpp, budgetSpp = ViewReferenceSettings{}.budgetSpp;
-  std::vector<std::string> budgetRungs;
-  CLI::Option* eiaExposureOpt = nullptr;
 };
 
+// The options write the library's settings directly; those with a policy of their own
+// (estimator, spp) or a name to parse are optional.
 struct ViewOpts {
   ViewReferenceOpts ref;
   CameraPoseOpts cam;
   DisplayArgs display;
-  std::string eia, mla = "real", spectral = "primaries", estimator = "auto";
-  int apertureGrid = ViewSettings{}.apertureGrid, wavelengthNodes = 1;
-  double gapMm = 0.0, background = 0.0, cosN = 0.0;
+  ViewRunSettings s;
+  ViewSettings view;  // before the estimator policy
+  std::optional<std::string> mla, spectral, estimator;
   bool noCoverGlass = false, relative = false, noCull = false;
-  CLI::Option* gapOpt = nullptr;
 };
 
+// The estimator policy on the options given, from ViewSettings' defaults (autoViewSettings
+// when nothing is given).
 ViewSettings viewSettings(const ViewOpts& o) {
-  ViewSettings vs;
-  vs.spp = o.cam.spp;
-  vs.seed = o.cam.run.seed;
+  ViewSettings vs = o.view;
+  resolveSetting(vs.spp, std::nullopt, o.cam.spp);
+  o.cam.run.applySeed(vs.seed);
   vs.progress = !o.cam.quiet;
-  vs.backgroundY = o.background;
   vs.cullTiles = !o.noCull;
-  vs.spectral = o.spectral == "visible" ? SpectralSampling::Visible : SpectralSampling::Primaries;
-  vs.apertureGrid = o.apertureGrid;
-  vs.wavelengthNodes = o.wavelengthNodes;
-  applyEstimatorPolicy(vs, o.estimator, o.cam.sppOpt->count() > 0);
+  if (o.spectral == "visible") vs.spectral = SpectralSampling::Visible;
+  applyEstimatorPolicy(vs, o.estimator.value_or("auto"), o.cam.spp.has_value());
   return vs;
 }
 
 ViewRunSettings viewRunSettings(const ViewOpts& o) {
-  ViewRunSettings s;
+  ViewRunSettings s = o.s;
   s.camera = o.cam.settings();
   s.displayPath = o.display.display;
   s.layout = layoutOverride(o.display);
-  if (o.gapOpt->count()) s.gapMm = o.gapMm;
-  s.eiaPath = o.eia;
-  s.mla = o.mla == "ideal" ? MlaKind::Ideal : MlaKind::Real;
+  if (o.mla == "ideal") s.mla = MlaKind::Ideal;
   s.emitter.absolute = !o.relative;
-  s.emitter.cosExponent = o.cosN;
   s.emitter.coverGlass = !o.noCoverGlass;
   s.view = viewSettings(o);
   return s;
@@ -128,88 +119,37 @@ ViewRunSettings viewRunSettings(const ViewOpts& o) {
 
 ViewReferenceSettings viewReferenceSettings(const ViewReferenceOpts& o) {
   const RunFile run = o.run.empty() ? RunFile{} : loadRunFile(o.run);
-  ViewReferenceSettings rs;
-  rs.fieldPath = !o.scene.empty() ? o.scene : run.scene.value_or("");
+  ViewReferenceSettings rs = o.rs;
+  resolveSetting(rs.fieldPath, run.scene, o.scene);
   rs.placement = run.placement;
   rs.placementOverride = placementOverride(o.place);
-  if (o.eiaExposureOpt->count()) rs.eiaExposure = o.eiaExposure;
-  rs.referenceSpp = o.referenceSpp;
   rs.budget = !o.noBudget;
-  rs.budgetRungs = o.budgetRungs;
-  rs.budgetCalibrationPath = o.budgetCalibration;
-  rs.budgetSpp = o.budgetSpp;
   return rs;
-}
-
-void warnIfOutOfView(const ViewRunResult& r) {
-  if (!r.render.stats.displayInView())
-    std::fprintf(stderr,
-                 "inim: warning: the display is out of the camera's view (%s): no camera ray reaches its active "
-                 "area; the image shows only the background\n",
-                 r.camera.pose.describe().c_str());
-}
-
-// The comparison's lines: metrics against the reference and the band-limited one, the budget.
-void printComparison(const ViewReferenceResult& r) {
-  std::printf("reference:   %s; placement %s; EIA exposure %s (%s); %.2f s\n", r.fieldPath.c_str(),
-              r.placement.describe().c_str(), formatNumber(r.eiaExposure).c_str(),
-              r.eiaExposureFromHeader ? "from its header" : "given", r.referenceSeconds);
-  if (!r.hasMetrics) {
-    std::fprintf(stderr, "inim: warning: no pixel sees the display; no metrics\n");
-    return;
-  }
-  for (const auto& [what, m] : {std::pair{"against:     reference", &r.metrics},
-                                {"             band-limited", &r.bandLimitedMetrics}})
-    std::printf("%s: PSNR %s dB, SSIM %.4f, CIEDE2000 mean %.3f, p95 %.3f\n", what, formatPsnr(m->psnrDb).c_str(),
-                m->ssim, m->deltaE.mean, m->deltaE.p95);
-  if (r.budget) std::printf("budget:      %s\n", budgetLine(*r.budget).c_str());
-}
-
-// A panel shows drive values in [0, 1] and the emitter clamps the rest (display_view/panel_emitter.cpp):
-// say so once, with the count, rather than refuse (EIAs filtered or resampled elsewhere
-// overshoot a little, and clamping is what the panel does).
-void warnIfDriveClamped(const ViewRunResult& v, const std::string& eiaPath) {
-  const Image& e = *v.eia;
-  const bool named = e.channelIndex("R") >= 0 && e.channelIndex("G") >= 0 && e.channelIndex("B") >= 0;
-  int64_t outside = 0;
-  float lo = 0.0f, hi = 1.0f;
-  for (int c = 0; c < 3 && c < e.numChannels(); ++c) {
-    const int ch = named ? e.channelIndex(std::string(1, "RGB"[c])) : c;
-    for (int y = 0; y < e.height; ++y)
-      for (int x = 0; x < e.width; ++x) {
-        const float d = e.at(x, y, ch);
-        if (d >= 0.0f && d <= 1.0f) continue;
-        ++outside, lo = std::min(lo, d), hi = std::max(hi, d);
-      }
-  }
-  if (outside == 0) return;
-  std::fprintf(stderr, "inim: warning: %s: %lld of %lld drive values are outside [0, 1] (from %s to %s); the panel "
-               "shows them clamped\n", eiaPath.c_str(), (long long)outside, (long long)e.width * e.height * 3,
-               formatNumber(lo).c_str(), formatNumber(hi).c_str());
 }
 
 void runViewCommand(const ViewOpts& o) {
   const auto t0 = std::chrono::steady_clock::now();
   const ViewRunSettings s = viewRunSettings(o);
   auto loaded = [&](const ViewRunResult& v) {
-    warnIfDriveClamped(v, s.eiaPath);
+    std::fprintf(stderr, "%s", driveClampedWarning(v, s.eiaPath).c_str());
     if (o.cam.quiet) return;
     std::printf("%s", loadedText(s, v).c_str());
     std::fflush(stdout);
   };
   if (o.ref.on) {
     const ViewReferenceResult r = runViewWithReference(s, viewReferenceSettings(o.ref), loaded);
-    warnIfOutOfView(r.view);
+    std::fprintf(stderr, "%s", outOfViewWarning(r.view).c_str());
     if (o.cam.quiet) return;
     std::printf("%s", summaryText(r.view, s.view, secondsSince(t0)).c_str());
-    printComparison(r);
+    std::printf("%s", comparisonText(r).c_str());
+    if (!r.hasMetrics) std::fprintf(stderr, "inim: warning: no pixel sees the display; no metrics\n");
     std::printf("exposure:    %s (both images)\nwrote:       ", formatNumber(r.exposure).c_str());
     for (size_t i = 0; i < r.written.size(); ++i) std::printf("%s%s", i ? ", " : "", r.written[i].c_str());
     std::printf("\n");
     return;
   }
   const ViewRunResult r = runView(s, loaded);
-  warnIfOutOfView(r);
+  std::fprintf(stderr, "%s", outOfViewWarning(r).c_str());
   if (o.cam.quiet) return;
   std::printf("%s", summaryText(r, s.view, secondsSince(t0)).c_str());
   std::printf("%s", writtenText(r, o.cam.s.out).c_str());
@@ -223,18 +163,18 @@ void addViewReferenceOptions(CLI::App* cmd, ViewReferenceOpts& o) {
                   "--reference: the EIA's scene or field (default: the run file's, else scenes/paper-fig7.json)");
   cmd->add_option("--run", o.run, "--reference: the EIA's run file (scene, placement)");
   addPlacementOptions(cmd, o.place);
-  o.eiaExposureOpt = cmd->add_option("--eia-exposure", o.eiaExposure,
+  cmd->add_option("--eia-exposure", o.rs.eiaExposure,
                                      "--reference: the EIA's drive per unit field luminance (default: its EXR "
                                      "header, written by inim eia and inim fig11)");
-  cmd->add_option("--reference-spp", o.referenceSpp, "--reference: samples per pixel of the reference")
+  cmd->add_option("--reference-spp", o.rs.referenceSpp, "--reference: samples per pixel of the reference")
       ->capture_default_str();
   cmd->add_flag("--no-budget", o.noBudget, "--reference: compare only, without the error budget");
-  cmd->add_option("--budget-rungs", o.budgetRungs,
+  cmd->add_option("--budget-rungs", o.rs.budgetRungs,
                   "--reference: only these budget rungs (comma separated, as inim fig11 --budget-rungs)")
       ->delimiter(',');
-  cmd->add_option("--budget-calibration", o.budgetCalibration,
+  cmd->add_option("--budget-calibration", o.rs.budgetCalibrationPath,
                   "--reference: the budget's calibration rung, a .cube or .clf from inim calibrate");
-  cmd->add_option("--budget-spp", o.budgetSpp, "--reference: strata per pixel of every budget rung")
+  cmd->add_option("--budget-spp", o.rs.budgetSpp, "--reference: strata per pixel of every budget rung")
       ->capture_default_str();
 }
 
@@ -242,40 +182,38 @@ void addViewReferenceOptions(CLI::App* cmd, ViewReferenceOpts& o) {
 
 void addViewCommand(CLI::App& app) {
   auto o = std::make_shared<ViewOpts>();
-  auto* cmd = app.add_subcommand(
-      "view", "Simulate what a camera sees when the display shows an EIA: spectral Monte Carlo through the camera "
-              "lens, the MLA and the panel's subpixels");
+  CLI::App* cmd = &app;
   addDisplayOptions(cmd, o->display);
-  cmd->add_option("--eia", o->eia, "EIA: linear drive values (EXR from inim eia), panel-sized or EIA-sized; a PNG is "
+  cmd->add_option("--eia", o->s.eiaPath, "EIA: linear drive values (EXR from inim eia), panel-sized or EIA-sized; a PNG is "
                                    "decoded through the panel's EOTF")
       ->required();
   cmd->add_option("--mla", o->mla, "MLA model: real (refracting lenslets) or ideal (paraxial thin lenses, the "
                                    "pinhole-MLA comparison)")
       ->check(CLI::IsMember({"real", "ideal"}))
-      ->capture_default_str();
-  o->gapOpt = cmd->add_option("--gap-mm", o->gapMm, "Panel to MLA reference plane, mm (default: the display's "
+      ->default_str(o->s.mla == MlaKind::Real ? "real" : "ideal");
+  cmd->add_option("--gap-mm", o->s.gapMm, "Panel to MLA reference plane, mm (default: the display's "
                                                     "reconstruction gap)");
   cmd->add_option("--spectral", o->spectral, "Wavelength sampling: primaries (importance-sampled per panel primary) "
                                              "or visible (4-wavelength packets)")
       ->check(CLI::IsMember({"primaries", "visible"}))
-      ->capture_default_str();
+      ->default_str(spectralSamplingName(o->view.spectral));
   cmd->add_option("--estimator", o->estimator,
                   "Panel estimator: point (subpixel under each ray), footprint (box average over the sample's "
                   "share of the pixel footprint), quadrature (pixel area, aperture and spectra all by quadrature, no "
                   "noise; spp = strata per pixel, default 1) or auto (quadrature: the lowest error for the time at "
                   "every width in inim bench)")
       ->check(CLI::IsMember({"point", "footprint", "quadrature", "auto"}))
-      ->capture_default_str();
-  cmd->add_option("--aperture-grid", o->apertureGrid,
+      ->default_str("auto");
+  cmd->add_option("--aperture-grid", o->view.apertureGrid,
                   "quadrature: the camera aperture's quadrature table, N x N cells over the exit pupil")
       ->check(CLI::Range(2, 64))->capture_default_str();
-  cmd->add_option("--wavelength-nodes", o->wavelengthNodes,
+  cmd->add_option("--wavelength-nodes", o->view.wavelengthNodes,
                   "quadrature, when something is dispersive: wavelength nodes per primary (1: each primary's "
                   "median wavelength, weighted by its whole spectrum)")
       ->check(CLI::Range(1, 64))->capture_default_str();
-  cmd->add_option("--background", o->background, "Luminance of the (D65 grey) background around the display, in the "
+  cmd->add_option("--background", o->view.backgroundY, "Luminance of the (D65 grey) background around the display, in the "
                                                   "image's units (default 0: black)");
-  cmd->add_option("--emission-cos-n", o->cosN, "Extra cos^n angular emission profile on top of the panel's (0: none)");
+  cmd->add_option("--emission-cos-n", o->s.emitter.cosExponent, "Extra cos^n angular emission profile on top of the panel's (0: none)");
   cmd->add_flag("--no-cover-glass", o->noCoverGlass, "Ignore the panel's cover glass");
   cmd->add_flag("--no-cull", o->noCull, "Trace every tile, also those that cannot see the display");
   cmd->add_flag("--relative", o->relative, "Panel white = luminance 1 instead of its peak luminance in cd/m^2");
@@ -287,14 +225,13 @@ void addViewCommand(CLI::App& app) {
 void addReferenceCommand(CLI::App& app) {
   struct Opts {
     CameraPoseOpts cam;
-    std::string scene, run, display;
+    std::optional<std::string> scene, display;
+    std::string run;
     PlacementArgs place;
     std::string dispersion = "auto";
   };
   auto o = std::make_shared<Opts>();
-  auto* cmd = app.add_subcommand(
-      "reference", "Render the scene itself through the viewing camera at the same pose, placed as for the EIA "
-                   "(the reference for inim view)");
+  CLI::App* cmd = &app;
   cmd->add_option("--scene,--field", o->scene,
                   "Scene JSON, trained radiance field (.inimrf) or Gaussian splats (.ply, .splat) (default: the run file's, else scenes/paper-fig7.json)");
   cmd->add_option("--run", o->run, "Run file of the EIA (placement, scene, display); options override it");
@@ -315,12 +252,12 @@ void addReferenceCommand(CLI::App& app) {
                              : o->dispersion == "ignore" ? CameraDispersion::Ignore
                                                          : CameraDispersion::Auto;
     s.camera = o->cam.settings();
-    s.fieldPath = !o->scene.empty() ? o->scene : run.scene.value_or("");
+    resolveSetting(s.fieldPath, run.scene, o->scene);
     s.placement = run.placement;
     s.placementOverride = placementOverride(o->place);
-    s.displayPath = !o->display.empty() ? o->display : run.display.value_or("");
-    s.reference.spp = o->cam.spp;
-    s.reference.seed = o->cam.run.seed;
+    resolveSetting(s.displayPath, run.display, o->display);
+    resolveSetting(s.reference.spp, std::nullopt, o->cam.spp);
+    o->cam.run.applySeed(s.reference.seed);
     s.reference.progress = !o->cam.quiet;
     const ReferenceRunResult r = runReference(s, [&](const ReferenceRunResult& v) {
       if (o->cam.quiet) return;

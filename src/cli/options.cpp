@@ -10,7 +10,7 @@
 namespace inim::cli {
 
 void addRunOptions(CLI::App* cmd, RunOptions& opts, std::function<void()> body) {
-  opts.seedOpt = cmd->add_option("--seed", opts.seed, "Random seed; output depends on it only")->capture_default_str();
+  cmd->add_option("--seed", opts.seed, "Random seed; output depends on it only (default: 1)");
   cmd->add_option("--threads", opts.threads, "Worker threads (0 = all cores)")->capture_default_str();
   cmd->callback([&opts, body = std::move(body)] {
     if (opts.threads < 0)

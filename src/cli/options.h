@@ -20,18 +20,17 @@ namespace inim::cli {
 
 // --seed and --threads. `body` is the command: it runs with the thread limit in force.
 struct RunOptions {
-  uint64_t seed = 1;
-  int threads = 0;  // 0 = all cores
-  CLI::Option* seedOpt = nullptr;
+  std::optional<uint64_t> seed;  // absent: the run file's, else the library's default
+  int threads = 0;               // 0 = all cores
+  // The seed given, over `seed` (a library setting at its default).
+  void applySeed(uint64_t& target) const { resolveSetting(target, std::nullopt, seed); }
 };
 void addRunOptions(CLI::App* cmd, RunOptions& opts, std::function<void()> body);
 
-// The option's value when it was given on the command line, else the run file's, else
-// `fallback`.
+// An option's value as given on the command line; none when it was not.
 template <class T>
-T optionOrRun(const CLI::Option* option, const T& given, const std::optional<T>& fromRun, const T& fallback) {
-  if (option && option->count()) return given;
-  return fromRun ? *fromRun : fallback;
+std::optional<T> givenValue(const CLI::Option* option, const T& value) {
+  return option && option->count() ? std::optional<T>(value) : std::nullopt;
 }
 
 // --display, --layout, --viewing-distance-mm.

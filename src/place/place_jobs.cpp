@@ -37,7 +37,6 @@ EiaRunSettings eiaSettings(const PlaceJobInput& in) {
   e.placement = in.state.placement;
   e.synthesis.vcpMm = in.state.vcpMm;
   e.synthesis.seed = in.seed;
-  applyExposure("auto", e.synthesis);
   e.synthesis.progress = false;
   return e;
 }
@@ -90,7 +89,6 @@ std::vector<std::string> predictViewJob(const PlaceJobInput& in, const std::stri
   v.eiaPath = e.out;
   v.view.seed = in.seed;
   v.view.progress = false;
-  applyEstimatorPolicy(v.view, "auto", false);
   ViewReferenceSettings rs;
   rs.fieldPath = in.fieldPath;
   rs.placement = in.state.placement;

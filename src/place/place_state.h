@@ -13,12 +13,13 @@
 
 #include "core/json_config.h"
 #include "field/placement.h"
+#include "synthesis/eia_synthesis.h"
 
 namespace inim {
 
 struct PlaceState {
   Placement placement;
-  double vcpMm = 100.0;
+  double vcpMm = SynthesisSettings{}.vcpMm;
   std::string layout = "parallel";     // "parallel" or "toed-in"
   double viewingDistanceMm = 350.0;    // D, for the toed-in layout
   std::string display;                 // the display file (absolute)

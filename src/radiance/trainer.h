@@ -57,7 +57,7 @@ struct TrainConfig {
   int tvInterval = 4;
   MarchSettings march;
   int occupancyInterval = 16;   // iterations between occupancy refreshes
-  uint64_t seed = 0;
+  uint64_t seed = 1;
   int progressInterval = 50;    // iterations between progress callbacks
 };
 

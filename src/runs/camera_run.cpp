@@ -1,5 +1,6 @@
 #include "runs/camera_run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include "display/gap_range.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/file_kinds.h"
 #include "core/output_file.h"
 #include "display/display.h"
 #include "field_files/field_factory.h"
@@ -21,10 +23,10 @@ namespace {
 
 CameraSetup setupCamera(const CameraRunSettings& o, int spp) {
   if (spp < 1) throw InputError("", "spp", std::to_string(spp), "a whole number >= 1");
-  if (lowerExtension(o.out) != ".exr") throw InputError("", "out", "\"" + o.out + "\"", "an OpenEXR file name (.exr)");
+  requireFileKind(o.out, "out", {FileKind::Exr}, "an OpenEXR file name (.exr)");
   CameraSetup s;
   s.png = o.png.empty() ? std::filesystem::path(o.out).replace_extension(".png").string() : o.png;
-  if (lowerExtension(s.png) != ".png") throw InputError("", "png", "\"" + s.png + "\"", "a PNG file name (.png)");
+  requireFileKind(s.png, "png", {FileKind::Png}, "a PNG file name (.png)");
   s.exposure = parseExposure(o.exposure, "exposure");
   for (auto [v, key] : {std::pair{o.width, "width"}, {o.height, "height"}})
     if (v < 0) throw InputError("", key, std::to_string(v), "a whole number of pixels >= 1");
@@ -70,9 +72,7 @@ double writeExposed(const Image& cameraRgb, const CameraSetup& cs, const std::st
 }  // namespace
 
 void checkEiaPath(const std::string& path) {
-  const std::string ext = lowerExtension(path);
-  if (ext != ".exr" && ext != ".png")
-    throw InputError("", "eia", "\"" + path + "\"", "an EIA image: linear EXR (or encoded PNG)");
+  requireFileKind(path, "eia", {FileKind::Exr, FileKind::Png}, "an EIA image: linear EXR (or encoded PNG)");
   if (!std::filesystem::exists(path)) throw InputError(path, "eia", "\"" + path + "\"", "an existing EIA image");
 }
 
@@ -121,7 +121,7 @@ ViewRunResult renderViewRun(const ViewRunSettings& s, const std::function<void(c
   r.eiaWidth = r.eia->width, r.eiaHeight = r.eia->height;
   r.layout = L;
   EmitterSettings es = s.emitter;
-  es.encoded = lowerExtension(s.eiaPath) == ".png";
+  es.encoded = isFileKind(s.eiaPath, FileKind::Png);
   const DisplayModel dm = displayModelAtGap(r.display, L, *r.eia, s, r.gapMm, es);
   r.coverGlass = dm.panel->hasCoverGlass();
   if (loaded) loaded(r);
@@ -142,6 +142,12 @@ ViewRunResult runView(const ViewRunSettings& s, const std::function<void(const V
   ViewRunResult r = renderViewRun(s, loaded);
   r.exposureFactor = writeExposed(r.render.image, r.camera, s.camera.out);
   return r;
+}
+
+ViewSettings autoViewSettings() {
+  ViewSettings view;
+  applyEstimatorPolicy(view, "auto", false);
+  return view;
 }
 
 void applyEstimatorPolicy(ViewSettings& view, const std::string& estimator, bool sppGiven) {
@@ -231,6 +237,32 @@ ReferenceRunResult runReference(const ReferenceRunSettings& s,
   r.exposureFactor = writeExposed(r.render.image, r.camera, s.camera.out);
   r.displayInView = displayCoverage(*r.camera.camera, area) > 0.0;
   return r;
+}
+
+std::string outOfViewWarning(const ViewRunResult& r) {
+  if (r.render.stats.displayInView()) return "";
+  return "inim: warning: the display is out of the camera's view (" + r.camera.pose.describe() +
+         "): no camera ray reaches its active area; the image shows only the background\n";
+}
+
+std::string driveClampedWarning(const ViewRunResult& r, const std::string& eiaPath) {
+  const Image& e = *r.eia;
+  const bool named = e.channelIndex("R") >= 0 && e.channelIndex("G") >= 0 && e.channelIndex("B") >= 0;
+  int64_t outside = 0;
+  float lo = 0.0f, hi = 1.0f;
+  for (int c = 0; c < 3 && c < e.numChannels(); ++c) {
+    const int ch = named ? e.channelIndex(std::string(1, "RGB"[c])) : c;
+    for (int y = 0; y < e.height; ++y)
+      for (int x = 0; x < e.width; ++x) {
+        const float d = e.at(x, y, ch);
+        if (d >= 0.0f && d <= 1.0f) continue;
+        ++outside, lo = std::min(lo, d), hi = std::max(hi, d);
+      }
+  }
+  if (outside == 0) return "";
+  return "inim: warning: " + eiaPath + ": " + std::to_string(outside) + " of " +
+         std::to_string(int64_t(e.width) * e.height * 3) + " drive values are outside [0, 1] (from " +
+         formatNumber(lo) + " to " + formatNumber(hi) + "); the panel shows them clamped\n";
 }
 
 }  // namespace inim

@@ -46,6 +46,10 @@ struct CameraSetup {
   std::string png;
 };
 
+// The view settings `inim view` renders with when told nothing: ViewSettings' defaults under
+// the auto estimator policy (applyEstimatorPolicy below).
+ViewSettings autoViewSettings();
+
 struct ViewRunSettings {
   CameraRunSettings camera;
   std::string displayPath;        // "": the paper's prototype
@@ -54,7 +58,7 @@ struct ViewRunSettings {
   std::string eiaPath;            // linear drive values (EXR), or an encoded PNG
   MlaKind mla = MlaKind::Real;
   EmitterSettings emitter;        // `encoded` follows the EIA's extension
-  ViewSettings view;
+  ViewSettings view = autoViewSettings();
 };
 
 struct ViewRunResult {
@@ -100,6 +104,11 @@ ViewRunResult renderViewRun(const ViewRunSettings& s, const std::function<void(c
 std::string loadedText(const ViewRunSettings& s, const ViewRunResult& r);
 // The render's lines as `inim view` prints them: samples and time, rays, the estimator's counts.
 std::string summaryText(const ViewRunResult& r, const ViewSettings& view, double totalSeconds);
+// The warnings `inim view` gives, each a line, or "" when there is none: the display out of the
+// camera's view; drive values outside [0, 1], which the panel shows clamped (EIAs filtered or
+// resampled elsewhere overshoot a little, and clamping is what the panel does).
+std::string outOfViewWarning(const ViewRunResult& r);
+std::string driveClampedWarning(const ViewRunResult& r, const std::string& eiaPath);
 
 struct ReferenceRunSettings {
   CameraRunSettings camera;

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/output_file.h"
+#include "core/file_kinds.h"
 #include "core/progress.h"
 #include "mla_optics/real_mla.h"
 #include "rays/pinhole_rays.h"
@@ -19,21 +20,13 @@ namespace inim {
 
 namespace {
 
-void requireExtension(const std::string& path, const std::string& key, std::initializer_list<const char*> extensions,
-                      const std::string& what) {
-  const std::string ext = lowerExtension(path);
-  for (const char* e : extensions)
-    if (ext == e) return;
-  throw InputError("", key, "\"" + path + "\"", what);
-}
-
 // Checked before any work: every output's kind.
 std::string checkOutputs(const EiaRunSettings& s) {
-  requireExtension(s.out, "out", {".exr"}, "an OpenEXR file name (.exr)");
+  requireFileKind(s.out, "out", {FileKind::Exr}, "an OpenEXR file name (.exr)");
   const std::string png = s.png.empty() ? std::filesystem::path(s.out).replace_extension(".png").string() : s.png;
-  requireExtension(png, "png", {".png"}, "a PNG file name (.png)");
-  if (!s.preview.empty()) requireExtension(s.preview, "preview", {".png"}, "a PNG file name (.png)");
-  if (!s.sdf.empty()) requireExtension(s.sdf, "sdf", {".sdf", ".dat"}, "a Zemax source file name (.sdf or .dat)");
+  requireFileKind(png, "png", {FileKind::Png}, "a PNG file name (.png)");
+  if (!s.preview.empty()) requireFileKind(s.preview, "preview", {FileKind::Png}, "a PNG file name (.png)");
+  if (!s.sdf.empty()) requireFileKind(s.sdf, "sdf", {FileKind::Sdf, FileKind::Dat}, "a Zemax source file name (.sdf or .dat)");
   return png;
 }
 
@@ -102,6 +95,7 @@ void applyExposure(const std::string& text, SynthesisSettings& s) {
     return;
   }
   char* end = nullptr;
+  s.autoExposure = false;
   s.exposure = std::strtod(text.c_str(), &end);
   if (text.empty() || *end || !(s.exposure > 0.0) || !std::isfinite(s.exposure))
     throw InputError("", "exposure", "\"" + text + "\"", "a number > 0 or auto");

@@ -307,7 +307,6 @@ SynthesisSettings synthesisSettings(const Fig11Settings& s, const Inputs& in) {
   ss.placement = in.placement;
   ss.spp = s.eiaSpp;
   ss.seed = s.seed;
-  ss.autoExposure = true;
   ss.correction = in.calibration;
   return ss;
 }
@@ -440,6 +439,38 @@ Fig11Result runFig11(const Fig11Settings& s, const Fig11Observer& observer) {
   // 3. The contact sheet and the metrics; every output lands together.
   writeSheetAndMetrics(run, s, in);
   return result;
+}
+
+std::string fig11EiaText(const Fig11Result& r) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%-8s %-14s %9s %7s %9s %9s %8s %8s\n", "view", "pose", "PSNR dB", "SSIM", "dE mean",
+                "dE p95", "rec s", "ref s");
+  return "EIA:         " + std::to_string(r.eiaWidth) + " x " + std::to_string(r.eiaHeight) + " px from " + r.fieldPath +
+         ", " + formatNumber(r.eiaSeconds, "%.2f") + " s\ncalibration: " + r.calibration + "\n" + buf;
+}
+
+std::string fig11ViewText(const Fig11View& v) {
+  if (!v.hasMetrics) return "";
+  const ImageMetrics& m = v.metrics;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%-8s %-14s %9s %7.4f %9.3f %9.3f %8.1f %8.1f\n", v.name.c_str(), v.label.c_str(),
+                formatPsnr(m.psnrDb).c_str(), m.ssim, m.deltaE.mean, m.deltaE.p95, v.reconstructionSeconds,
+                v.referenceSeconds);
+  return buf;
+}
+
+std::string fig11ViewWarnings(const Fig11View& v) {
+  std::string w;
+  if (!v.displayInView) w += "inim: warning: the display is out of view at " + v.pose.describe() + "\n";
+  if (!v.hasMetrics) w += "inim: warning: the display is out of view at " + v.pose.describe() + "; no metrics\n";
+  return w;
+}
+
+std::string fig11WrittenText(const Fig11Settings& s) {
+  return "wrote:       " + s.outDir +
+         "/{eia.exr,eia.png,view_*.exr|png,reference_*.exr|png,contact_sheet.png,metrics.json,metrics.csv" +
+         (s.depthError ? ",depth_error_*.csv,reference_*_depth.exr,depth_error.png" : "") +
+         (s.budget ? ",budget.json,budget.csv,budget.png" : "") + "}\n";
 }
 
 }  // namespace inim

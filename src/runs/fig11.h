@@ -108,4 +108,11 @@ struct Fig11Observer {
 // calibration, ...) before any work or output.
 Fig11Result runFig11(const Fig11Settings& settings, const Fig11Observer& observer = {});
 
+// What `inim fig11` prints as it goes: the EIA and the table's header; a view's row (none when
+// it has no metrics) with the warnings it gives on stderr; the files written.
+std::string fig11EiaText(const Fig11Result& r);
+std::string fig11ViewText(const Fig11View& v);
+std::string fig11ViewWarnings(const Fig11View& v);
+std::string fig11WrittenText(const Fig11Settings& s);
+
 }  // namespace inim

@@ -10,6 +10,7 @@
 #include "field/placement.h"
 #include "mla_optics/real_lens_rays.h"
 #include "display/layout_override.h"
+#include "synthesis/eia_synthesis.h"
 
 namespace inim {
 
@@ -30,8 +31,8 @@ struct RayExportSettings {
   bool forField = false;
   std::optional<Placement> placement;   // a run file's
   PlacementOverride placementOverride;  // given one by one, over that
-  double vcpMm = 100.0;
-  int spp = 1;
+  double vcpMm = SynthesisSettings{}.vcpMm;  // as inim eia asks them
+  int spp = SynthesisSettings{}.spp;
 };
 
 struct RayExportResult {

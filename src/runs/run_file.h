@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "field/placement.h"
 
@@ -31,5 +32,21 @@ struct RunFile {
 
 // Strict reader (unknown keys are errors naming the file and key).
 RunFile loadRunFile(const std::string& path);
+
+// The one rule for every command that takes a run file: defaults < run file < command line.
+// A setting starts at its library default (its settings struct's initialiser, the only place
+// a default is written); the run file's value replaces it, the command line's replaces both.
+template <class T>
+void resolveSetting(T& setting, const std::optional<std::type_identity_t<T>>& fromRunFile,
+                    const std::optional<std::type_identity_t<T>>& given) {
+  if (given) setting = *given;
+  else if (fromRunFile) setting = *fromRunFile;
+}
+// For a setting given as text and parsed by the library (exposure, gamut, ...): the text that
+// wins, or none (the default stands).
+inline const std::optional<std::string>& chosenText(const std::optional<std::string>& fromRunFile,
+                                                    const std::optional<std::string>& given) {
+  return given ? given : fromRunFile;
+}
 
 }  // namespace inim

@@ -1,6 +1,7 @@
 #include "runs/view_reference.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <future>
 
@@ -9,6 +10,7 @@
 #include "calibration/calibration_file.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/file_kinds.h"
 #include "core/output_file.h"
 #include "runs/pose_comparison.h"
 #include "field_files/field_factory.h"
@@ -40,7 +42,7 @@ double eiaExposureOf(const std::string& eiaPath, const std::optional<double>& gi
     return *given;
   }
   const std::optional<double> h =
-      lowerExtension(eiaPath) == ".exr" ? readImageNumber(eiaPath, kEiaExposureHeader) : std::nullopt;
+      isFileKind(eiaPath, FileKind::Exr) ? readImageNumber(eiaPath, kEiaExposureHeader) : std::nullopt;
   if (!h)
     throw InputError(eiaPath, kEiaExposureHeader, "(absent)",
                      "the EIA's exposure, kept in the EXR header by inim eia and inim fig11; for another EIA "
@@ -73,7 +75,7 @@ Image linearEia(const Image& eia, bool encoded, const Panel& panel) {
 // The run's own view is the budget's full chain when it was rendered as the rungs are.
 bool viewIsFullChain(const ViewRunSettings& s, const ViewReferenceSettings& rs) {
   return s.mla == MlaKind::Real && s.emitter.coverGlass && s.emitter.absolute && s.emitter.cosExponent == 0.0 &&
-         rs.budgetSpp == s.view.spp && lowerExtension(s.eiaPath) == ".exr";
+         rs.budgetSpp == s.view.spp && isFileKind(s.eiaPath, FileKind::Exr);
 }
 
 std::string sibling(const std::string& out, const std::string& suffix) {
@@ -125,7 +127,7 @@ PoseBudget viewBudget(const ViewRunSettings& s, const ViewReferenceSettings& rs,
   second.sppElsewhere = 0;
   const Image secondRef = renderReference(*in.field.field, in.placement.toDisplay(), *cs.camera, cs.desc.sensor, second).image;
   const Image secondExposed = scaledImage(secondRef, ref.toCdM2 * ref.img.exposure);
-  const Image eia = linearEia(*r.view.eia, lowerExtension(s.eiaPath) == ".png", r.view.display.panel);
+  const Image eia = linearEia(*r.view.eia, isFileKind(s.eiaPath, FileKind::Png), r.view.display.panel);
   if (in.calibration && !calibrated) calibrated = correctedEia(r.view.layout, eia, *in.calibration);
   BudgetScene scene{&r.view.display, &r.view.layout, &eia, calibrated ? &*calibrated : nullptr, &cs.desc, s.view,
                     r.view.gapMm};
@@ -227,6 +229,23 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
   writeJsonFile(m, out(sibling(s.camera.out, "_metrics.json")));
   outputs.commit();
   return r;
+}
+
+std::string comparisonText(const ViewReferenceResult& r) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%.2f s\n", r.referenceSeconds);
+  std::string text = "reference:   " + r.fieldPath + "; placement " + r.placement.describe() + "; EIA exposure " +
+                     formatNumber(r.eiaExposure) + " (" + (r.eiaExposureFromHeader ? "from its header" : "given") +
+                     "); " + buf;
+  if (!r.hasMetrics) return text;
+  for (const auto& [what, m] : {std::pair{"against:     reference", &r.metrics},
+                                {"             band-limited", &r.bandLimitedMetrics}}) {
+    std::snprintf(buf, sizeof buf, "%s: PSNR %s dB, SSIM %.4f, CIEDE2000 mean %.3f, p95 %.3f\n", what,
+                  formatPsnr(m->psnrDb).c_str(), m->ssim, m->deltaE.mean, m->deltaE.p95);
+    text += buf;
+  }
+  if (r.budget) text += "budget:      " + budgetLine(*r.budget) + "\n";
+  return text;
 }
 
 }  // namespace inim

@@ -60,4 +60,9 @@ struct ViewReferenceResult {
 ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewReferenceSettings& rs,
                                          const std::function<void(const ViewRunResult&)>& loaded = {});
 
+// The comparison's lines as `inim view --reference` prints them: the reference, its metrics
+// against the view and the band-limited reference, the budget (no metrics when no pixel sees
+// the display).
+std::string comparisonText(const ViewReferenceResult& r);
+
 }  // namespace inim

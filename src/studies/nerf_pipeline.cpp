@@ -342,7 +342,6 @@ EiaStep eiaStep(const NerfSetup& setup, const RadianceField& field, std::vector<
   SynthesisSettings sa;
   sa.spp = setup.B.eiaSpp;
   sa.seed = 1;
-  sa.autoExposure = true;
   sa.aovs = true;
   sa.progress = false;
   e.analytic = synthesizeEia(setup.L, setup.display.panel, *setup.scene, sa);

@@ -12,6 +12,7 @@ Image synthesizeAt(const EiLayout& L, const Display& d, const Json& scene, doubl
   SynthesisSettings settings;
   settings.placement.translateMm = Vec3d(0.0, 0.0, zMm);
   settings.spp = spp;
+  settings.autoExposure = false;  // exposure 1: every depth's EIA in the same units
   settings.progress = false;
   return synthesizeEia(L, d.panel, *field, settings).eia;
 }

@@ -43,8 +43,9 @@ struct SynthesisSettings {
   double vcpMm = kDefaultVcpMm;
   int spp = 1;                  // field samples per display ray
   uint64_t seed = 1;
-  double exposure = 1.0;        // drive = exposure * native RGB (before white gains, gamut)
-  bool autoExposure = false;    // pick the exposure that maps the given percentile of the
+  double exposure = 1.0;        // drive = exposure * native RGB (before white gains, gamut),
+                                // when autoExposure is off
+  bool autoExposure = true;     // pick the exposure that maps the given percentile of the
   double autoPercentile = 99.0; // brightest drive channel, over the pixels that see the
                                 // scene, to full drive (1): at most 1 % of them clip
   bool whiteBalanceD65 = false; // gains so that D65 drives (1, 1, 1) (panel_color.h)

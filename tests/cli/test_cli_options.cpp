@@ -16,34 +16,43 @@ using namespace inim::cli;
 
 namespace {
 
-// Parses `args` for an app with one option --spp (default 1) and returns that option.
-struct OneOption {
+// Parses `args` for an app with one optional option --spp and returns its value.
+std::optional<int> parsedSpp(std::vector<std::string> args) {
   CLI::App app{"test"};
-  int spp = 1;
-  CLI::Option* opt = app.add_option("--spp", spp);
-  explicit OneOption(std::vector<std::string> args) {
-    std::reverse(args.begin(), args.end());  // CLI11 takes them last first
-    app.parse(args);
-  }
-};
+  std::optional<int> spp;
+  app.add_option("--spp", spp);
+  std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+  app.parse(args);
+  return spp;
+}
 
 }  // namespace
 
 TEST(CliOptions, OptionGivenWinsOverRunFileAndDefault) {
-  OneOption given({"--spp", "7"});
-  EXPECT_EQ(optionOrRun(given.opt, given.spp, std::optional<int>(3), 1), 7);
-  EXPECT_EQ(optionOrRun(given.opt, given.spp, std::optional<int>(), 1), 7);
+  int spp = 1;  // the library's default
+  resolveSetting(spp, std::optional<int>(3), parsedSpp({"--spp", "7"}));
+  EXPECT_EQ(spp, 7);
+  spp = 1;
+  resolveSetting(spp, std::optional<int>(), parsedSpp({"--spp", "7"}));
+  EXPECT_EQ(spp, 7);
 }
 
 TEST(CliOptions, RunFileWinsOverDefaultWhenOptionAbsent) {
-  OneOption absent({});
-  EXPECT_EQ(optionOrRun(absent.opt, absent.spp, std::optional<int>(3), 1), 3);
-  EXPECT_EQ(optionOrRun(absent.opt, absent.spp, std::optional<int>(), 5), 5);
-  // An option given with its default value still wins (it was given).
-  OneOption sameAsDefault({"--spp", "1"});
-  EXPECT_EQ(optionOrRun(sameAsDefault.opt, sameAsDefault.spp, std::optional<int>(3), 1), 1);
-  // No option at all (a command without it): run file, else default.
-  EXPECT_EQ(optionOrRun<std::string>(nullptr, "x", std::optional<std::string>("run"), "default"), "run");
+  int spp = 1;
+  resolveSetting(spp, std::optional<int>(3), parsedSpp({}));
+  EXPECT_EQ(spp, 3);
+  spp = 5;
+  resolveSetting(spp, std::optional<int>(), parsedSpp({}));
+  EXPECT_EQ(spp, 5);  // neither: the default stands
+  // An option given with the default's value still wins (it was given).
+  spp = 1;
+  resolveSetting(spp, std::optional<int>(3), parsedSpp({"--spp", "1"}));
+  EXPECT_EQ(spp, 1);
+  // Text settings parsed by the library: the text that wins, or none.
+  const std::optional<std::string> run("desaturate"), none;
+  EXPECT_EQ(*chosenText(run, std::optional<std::string>("clip")), "clip");
+  EXPECT_EQ(*chosenText(run, none), "desaturate");
+  EXPECT_FALSE(chosenText(none, none).has_value());
 }
 
 TEST(CliOptions, LibraryErrorIsPrintedWithTheFlag) {
