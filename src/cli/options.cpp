@@ -1,5 +1,6 @@
 #include "cli/options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -79,39 +80,27 @@ RealLensRayOptions realLensRayOptions(const RealLensArgs& a) {
 }
 
 std::string flagForSetting(const std::string& key) {
-  // Setting keys as the library and run files spell them -> the flags that set them.
-  static const std::map<std::string, std::string> kFlags = {
-      {"spp", "--spp"}, {"seed", "--seed"}, {"threads", "--threads"}, {"out", "--out"}, {"png", "--png"},
-      {"preview", "--preview"}, {"sdf", "--sdf"}, {"eia", "--eia"},
-      {"in", "--in"}, {"ei", "--ei"}, {"flux_scale", "--flux-scale"},
-      {"width", "--width"}, {"height", "--height"}, {"width/height", "--width/--height"},
-      {"field", "--field"}, {"scene", "--scene"}, {"field_model", "--field-model"},
-      {"display", "--display"}, {"layout", "--layout"}, {"viewing_distance_mm", "--viewing-distance-mm"},
-      {"gap_mm", "--gap-mm"}, {"vcp_mm", "--vcp-mm"},
-      {"scale", "--scale"}, {"rotate_deg", "--rotate-deg"}, {"translate_mm", "--translate-mm"},
-      {"exposure", "--exposure"}, {"gamut", "--gamut"}, {"white_balance", "--white-balance"},
-      {"calibration", "--calibration"},
-      {"triad_wavelengths", "--triad-wavelengths"}, {"real_lens_ray", "--real-lens-ray"},
-      {"wavelength_nm", "--wavelength-nm"},
-      {"camera", "--camera"}, {"camera_model", "--camera-model"}, {"distance_mm", "--distance-mm"},
-      {"rot_h_deg", "--rot-h-deg"}, {"rot_v_deg", "--rot-v-deg"}, {"focus_mm", "--focus-mm"},
-      {"estimator", "--estimator"}, {"panel_estimator", "--estimator"}, {"spectral", "--spectral"},
-      {"wavelength_nodes", "--wavelength-nodes"}, {"background", "--background"}, {"background_y", "--background"},
-      {"emission_cos_n", "--emission-cos-n"}, {"cos_exponent", "--emission-cos-n"}, {"mla", "--mla"},
-      {"reference_spp", "--reference-spp"}, {"eia_spp", "--eia-spp"}, {"angle_deg", "--angle"},
-      {"hfov_deg", "--fov"}, {"fov", "--fov"}, {"aperture_mm", "--aperture"}, {"aperture", "--aperture"},
-      {"focus_distance_mm", "--focus"}, {"max_depth", "--max-depth"}, {"integrator", "--integrator"},
-      {"resolutions", "--resolutions"}, {"stage_starts", "--stage-starts"}, {"holdout_every", "--holdout-every"},
-      {"elevation_deg", "--elevation-deg"}, {"target", "--target"}, {"space", "--space"}, {"de_map", "--de-map"},
-      {"eye", "--eye"}, {"look_at", "--look-at"}, {"up", "--up"},
-      {"poses", "--poses"}, {"field_space", "--field-space"}, {"correction", "--correction"},
-      {"grid_levels", "--grid-levels"}, {"holdout", "--holdout"}, {"holdout_out_of_gamut", "--holdout-out-of-gamut"},
-      {"budget_rungs", "--budget-rungs"}, {"budget_calibration", "--budget-calibration"},
-      {"budget_spp", "--budget-spp"}, {"eia_exposure", "--eia-exposure"},
-      {"lut_size", "--lut-size"}, {"panel_bits", "--panel-bits"}, {"direct_checks", "--direct-checks"},
-  };
-  auto it = kFlags.find(key);
-  return it == kFlags.end() ? key : it->second;
+  // Setting keys as the library and run files spell them. Most are their flag in snake_case
+  // ("vcp_mm" -> "--vcp-mm"); the rest are named by flags of other names.
+  static const std::set<std::string> kSnakeCaseFlags = {
+      "spp", "seed", "threads", "out", "png", "preview", "sdf", "eia", "in", "ei", "flux_scale", "width", "height",
+      "field", "scene", "field_model", "display", "layout", "viewing_distance_mm", "gap_mm", "vcp_mm", "scale",
+      "rotate_deg", "translate_mm", "exposure", "gamut", "white_balance", "calibration", "triad_wavelengths",
+      "real_lens_ray", "wavelength_nm", "camera", "camera_model", "distance_mm", "rot_h_deg", "rot_v_deg",
+      "focus_mm", "estimator", "spectral", "wavelength_nodes", "background", "emission_cos_n", "mla",
+      "reference_spp", "eia_spp", "fov", "aperture", "max_depth", "integrator", "resolutions", "stage_starts",
+      "holdout_every", "elevation_deg", "target", "space", "de_map", "eye", "look_at", "up", "poses", "field_space",
+      "correction", "grid_levels", "holdout", "holdout_out_of_gamut", "budget_rungs", "budget_calibration",
+      "budget_spp", "eia_exposure", "lut_size", "panel_bits", "direct_checks"};
+  static const std::map<std::string, std::string> kOtherFlags = {
+      {"width/height", "--width/--height"}, {"panel_estimator", "--estimator"}, {"background_y", "--background"},
+      {"cos_exponent", "--emission-cos-n"}, {"angle_deg", "--angle"}, {"hfov_deg", "--fov"},
+      {"aperture_mm", "--aperture"}, {"focus_distance_mm", "--focus"}};
+  if (auto it = kOtherFlags.find(key); it != kOtherFlags.end()) return it->second;
+  if (!kSnakeCaseFlags.count(key)) return key;
+  std::string flag = "--" + key;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
 }
 
 InputError asCommandLineError(const InputError& e) {
