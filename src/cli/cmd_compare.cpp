@@ -2,6 +2,7 @@
 // A against B: PSNR, SSIM, and the mean and 95th percentile of the per-pixel CIEDE2000. The run
 // is src/runs/compare_run.h.
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -12,9 +13,7 @@ namespace inim::cli {
 
 void addCompareCommand(CLI::App& app) {
   struct Opts {
-    CompareRunSettings s;
-    std::string values = "encoded";
-    std::string ssim = "luminance";
+    CompareRunSettings s;  // the options write it directly
     bool json = false;
   };
   auto opts = std::make_shared<Opts>();
@@ -29,27 +28,29 @@ void addCompareCommand(CLI::App& app) {
   cmd->add_option("--space", opts->s.space,
                   "Colour space of both images (lin_rec709, srgb, display_p3, acescg, cie_xyz_d65); default: "
                   "lin_rec709 for EXR/HDR files, srgb for PNG/JPEG/TIFF, per file");
-  cmd->add_option("--values", opts->values,
+  const std::map<std::string, MetricValues> values = {{"encoded", MetricValues::Encoded},
+                                                      {"linear", MetricValues::Linear}};
+  cmd->add_option("--values", opts->s.options.values,
                   "PSNR and SSIM on sRGB-encoded values (encoded) or on linear Rec.709 values (linear)")
-      ->check(CLI::IsMember({"encoded", "linear"}))
-      ->capture_default_str();
+      ->transform(CLI::CheckedTransformer(values))
+      ->default_str(opts->s.options.values == MetricValues::Encoded ? "encoded" : "linear");
   cmd->add_option("--peak", opts->s.options.peak, "PSNR peak value and SSIM dynamic range L, in the units of --values")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--ssim", opts->ssim, "SSIM on luminance, or the mean of per-channel SSIMs (channels)")
-      ->check(CLI::IsMember({"luminance", "channels"}))
-      ->capture_default_str();
+  const std::map<std::string, SsimChannels> ssim = {{"luminance", SsimChannels::Luminance},
+                                                    {"channels", SsimChannels::PerChannelMean}};
+  cmd->add_option("--ssim", opts->s.options.ssimChannels,
+                  "SSIM on luminance, or the mean of per-channel SSIMs (channels)")
+      ->transform(CLI::CheckedTransformer(ssim))
+      ->default_str(opts->s.options.ssimChannels == SsimChannels::Luminance ? "luminance" : "channels");
   cmd->add_option("--white-luminance", opts->s.options.whiteLuminance,
                   "Y of the reference white for CIELAB, in the images' linear units (1: RGB (1,1,1) is L* = 100)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--de-map", opts->s.deMap, "Also write the per-pixel CIEDE2000 as a single-channel EXR");
   cmd->callback([opts] {
-    CompareRunSettings s = opts->s;
-    s.options.values = opts->values == "linear" ? MetricValues::Linear : MetricValues::Encoded;
-    s.options.ssimChannels = opts->ssim == "channels" ? SsimChannels::PerChannelMean : SsimChannels::Luminance;
-    const CompareRunResult r = runCompare(s);
-    std::printf("%s", (opts->json ? compareJson(s, r) : compareText(s, r)).c_str());
+    const CompareRunResult r = runCompare(opts->s);
+    std::printf("%s", (opts->json ? compareJson(opts->s, r) : compareText(opts->s, r)).c_str());
   });
 }
 

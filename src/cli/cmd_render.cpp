@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "cli/commands.h"
 #include "cli/options.h"
@@ -13,10 +14,20 @@
 
 namespace inim::cli {
 
+namespace {
+
+// "x,y,z" as --eye takes it.
+std::string vectorText(const Vec3d& v) {
+  return formatNumber(v.x) + "," + formatNumber(v.y) + "," + formatNumber(v.z);
+}
+
+}  // namespace
+
 void addRenderCommand(CLI::App& app) {
   struct Opts {
     RenderRunSettings s;
-    std::string eye = "0,0,350", lookAt = "0,0,0", up = "0,1,0", integrator;
+    std::optional<std::string> eye, lookAt, up;  // absent: the camera settings' pose
+    std::string integrator;
     int maxDepth = 0;
     RunOptions run;
     CLI::Option *focusOpt = nullptr, *maxDepthOpt = nullptr;
@@ -31,9 +42,10 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--width", o->s.camera.width, "Image width, pixels")->capture_default_str();
   cmd->add_option("--height", o->s.camera.height, "Image height, pixels")->capture_default_str();
   cmd->add_option("--spp", o->s.render.spp, "Samples per pixel")->capture_default_str();
-  cmd->add_option("--eye", o->eye, "Camera position x,y,z in mm (display frame)")->capture_default_str();
-  cmd->add_option("--look-at", o->lookAt, "Point the camera looks at, mm")->capture_default_str();
-  cmd->add_option("--up", o->up, "Up vector")->capture_default_str();
+  const ViewingPose& pose = o->s.camera.pose;
+  cmd->add_option("--eye", o->eye, "Camera position x,y,z in mm (display frame)")->default_str(vectorText(pose.eye));
+  cmd->add_option("--look-at", o->lookAt, "Point the camera looks at, mm")->default_str(vectorText(pose.lookAt));
+  cmd->add_option("--up", o->up, "Up vector")->default_str(vectorText(pose.up));
   cmd->add_option("--fov", o->s.camera.hfovDeg, "Horizontal field of view, degrees")->capture_default_str();
   cmd->add_option("--aperture", o->s.camera.apertureMm, "Thin-lens aperture diameter, mm (0 = pinhole)")
       ->capture_default_str();
@@ -43,8 +55,9 @@ void addRenderCommand(CLI::App& app) {
   o->maxDepthOpt = cmd->add_option("--max-depth", o->maxDepth, "Maximum scattering depth (overrides the scene)");
   addRunOptions(cmd, o->run, [o] {
     RenderRunSettings& s = o->s;
-    s.camera.pose = {parseCameraVector(o->eye, "eye"), parseCameraVector(o->lookAt, "look_at"),
-                     parseCameraVector(o->up, "up")};
+    if (o->eye) s.camera.pose.eye = parseCameraVector(*o->eye, "eye");
+    if (o->lookAt) s.camera.pose.lookAt = parseCameraVector(*o->lookAt, "look_at");
+    if (o->up) s.camera.pose.up = parseCameraVector(*o->up, "up");
     if (o->integrator == "direct") s.integrator = IntegratorSettings::Type::Direct;
     if (o->integrator == "path") s.integrator = IntegratorSettings::Type::Path;
     // Given on the command line, 0 is not "the default" (the camera's own meaning of 0).
