@@ -366,6 +366,7 @@ DeltaEStats deltaE2000(const Image& a, const Image& b, const std::string& space,
 // All metrics
 
 const char* metricValuesName(MetricValues v) { return v == MetricValues::Encoded ? "encoded" : "linear"; }
+const char* ssimChannelsName(SsimChannels c) { return c == SsimChannels::Luminance ? "luminance" : "channels"; }
 
 ImageMetrics compareImages(const Image& a, const Image& b, const CompareOptions& opt, const PixelMask* mask,
                            const std::string& nameA, const std::string& nameB, std::vector<float>* deltaEMap) {

@@ -141,6 +141,7 @@ enum class MetricValues {
   Linear,   // PSNR and SSIM on linear Rec.709 values (images converted to lin_rec709)
 };
 const char* metricValuesName(MetricValues v);
+const char* ssimChannelsName(SsimChannels c);  // "luminance", "channels"
 
 struct CompareOptions {
   std::string spaceA = "lin_rec709", spaceB = "lin_rec709";  // declared colour spaces

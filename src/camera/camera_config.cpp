@@ -84,17 +84,21 @@ ViewingPose defaultViewingPose(const CameraDescription& c) {
   return p;
 }
 
+RealLensSettings realLensSettings(const CameraDescription& c, double focusMm) {
+  RealLensSettings s;
+  s.fNumber = c.fNumber;
+  s.focusDistanceMm = focusMm;
+  s.focusMode = c.focusMode;
+  s.fresnel = c.fresnel;
+  return s;
+}
+
 std::unique_ptr<CameraModel> makeCameraModel(const CameraDescription& c, const ViewingPose& pose,
                                              std::optional<CameraModelKind> kind) {
   const CameraModelKind k = kind.value_or(c.model);
   const double focus = c.focusDistanceMm > 0.0 ? c.focusDistanceMm : glm::length(pose.lookAt - pose.eye);
   if (k == CameraModelKind::RealLens) {
-    RealLensCameraModel::Settings s;
-    s.fNumber = c.fNumber;
-    s.focusDistanceMm = focus;
-    s.focusMode = c.focusMode;
-    s.fresnel = c.fresnel;
-    return std::make_unique<RealLensCameraModel>(c.lens, c.sensor.geometry(), pose, s);
+    return std::make_unique<RealLensCameraModel>(c.lens, c.sensor.geometry(), pose, realLensSettings(c, focus));
   }
   LensSystem lens = c.lens;
   if (c.fNumber > 0.0) setFNumber(lens, c.fNumber);

@@ -35,6 +35,10 @@ CameraDescription parseCameraDescription(const JsonObject& o, const LensLoadOpti
 // The default pose: the eye on the display normal at distanceMm, looking at the origin, y up.
 ViewingPose defaultViewingPose(const CameraDescription& c);
 
+// The real-lens settings a description gives (its f-number, focus mode, Fresnel), focused at
+// `focusMm` from the entrance pupil.
+RealLensSettings realLensSettings(const CameraDescription& c, double focusMm);
+
 // Builds the camera model (the description's own, or `kind`). The pinhole and thin-lens
 // stand-ins take the real lens's EFL and f-number and the same focus distance; the pinhole
 // sits at the thin lens's image distance, so all three frame the scene alike.

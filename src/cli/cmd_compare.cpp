@@ -2,11 +2,11 @@
 // A against B: PSNR, SSIM, and the mean and 95th percentile of the per-pixel CIEDE2000. The run
 // is src/runs/compare_run.h.
 #include <cstdio>
-#include <map>
 #include <memory>
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "runs/compare_run.h"
 
 namespace inim::cli {
@@ -28,21 +28,16 @@ void addCompareCommand(CLI::App& app) {
   cmd->add_option("--space", opts->s.space,
                   "Colour space of both images (lin_rec709, srgb, display_p3, acescg, cie_xyz_d65); default: "
                   "lin_rec709 for EXR/HDR files, srgb for PNG/JPEG/TIFF, per file");
-  const std::map<std::string, MetricValues> values = {{"encoded", MetricValues::Encoded},
-                                                      {"linear", MetricValues::Linear}};
-  cmd->add_option("--values", opts->s.options.values,
-                  "PSNR and SSIM on sRGB-encoded values (encoded) or on linear Rec.709 values (linear)")
-      ->transform(CLI::CheckedTransformer(values))
-      ->default_str(opts->s.options.values == MetricValues::Encoded ? "encoded" : "linear");
+  CompareOptions& co = opts->s.options;
+  addChoiceOption(cmd, "--values", co.values, {MetricValues::Encoded, MetricValues::Linear}, metricValuesName,
+                  "PSNR and SSIM on sRGB-encoded values or on linear Rec.709 values")
+      ->default_str(metricValuesName(co.values));
   cmd->add_option("--peak", opts->s.options.peak, "PSNR peak value and SSIM dynamic range L, in the units of --values")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  const std::map<std::string, SsimChannels> ssim = {{"luminance", SsimChannels::Luminance},
-                                                    {"channels", SsimChannels::PerChannelMean}};
-  cmd->add_option("--ssim", opts->s.options.ssimChannels,
-                  "SSIM on luminance, or the mean of per-channel SSIMs (channels)")
-      ->transform(CLI::CheckedTransformer(ssim))
-      ->default_str(opts->s.options.ssimChannels == SsimChannels::Luminance ? "luminance" : "channels");
+  addChoiceOption(cmd, "--ssim", co.ssimChannels, {SsimChannels::Luminance, SsimChannels::PerChannelMean},
+                  ssimChannelsName, "SSIM on luminance, or the mean of per-channel SSIMs")
+      ->default_str(ssimChannelsName(co.ssimChannels));
   cmd->add_option("--white-luminance", opts->s.options.whiteLuminance,
                   "Y of the reference white for CIELAB, in the images' linear units (1: RGB (1,1,1) is L* = 100)")
       ->check(CLI::PositiveNumber)

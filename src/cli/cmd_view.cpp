@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -42,10 +41,9 @@ struct CameraPoseOpts {
 
 void addCameraPoseOptions(CLI::App* cmd, CameraPoseOpts& o) {
   cmd->add_option("--camera", o.s.camera, "Camera: a name in optics/cameras/ or a JSON file (default: alvium-1800-u-500c)");
-  const std::map<std::string, CameraModelKind> models = {
-      {"real-lens", CameraModelKind::RealLens}, {"thin-lens", CameraModelKind::ThinLens}, {"pinhole", CameraModelKind::Pinhole}};
-  cmd->add_option("--camera-model", o.s.model, "real-lens, thin-lens or pinhole (default: the camera file's)")
-      ->transform(CLI::CheckedTransformer(models));
+  addChoiceOption(cmd, "--camera-model", o.s.model,
+                  {CameraModelKind::RealLens, CameraModelKind::ThinLens, CameraModelKind::Pinhole}, cameraModelName,
+                  "Camera model (default: the camera file's)");
   cmd->add_option("--distance-mm", o.s.distanceMm,
                                   "Camera (entrance pupil) to display centre, mm (default: the camera file's distance_mm)");
   cmd->add_option("--rot-h-deg", o.s.rotHDeg,

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -31,6 +33,18 @@ void addRunOptions(CLI::App* cmd, RunOptions& opts, std::function<void()> body);
 template <class T>
 std::optional<T> givenValue(const CLI::Option* option, const T& value) {
   return option && option->count() ? std::optional<T>(value) : std::nullopt;
+}
+
+// An option that names one of `values` by the library's own name for it (nameOf), written
+// into `target` (an enum, or an optional one); --help lists the names.
+template <class E, class Target>
+CLI::Option* addChoiceOption(CLI::App* cmd, const std::string& flag, Target& target, std::initializer_list<E> values,
+                             const char* (*nameOf)(E), const std::string& help) {
+  std::map<std::string, E> byName;
+  std::string names;
+  for (E v : values) byName[nameOf(v)] = v, names += std::string(names.empty() ? "" : ", ") + nameOf(v);
+  return cmd->add_option(flag, target, help + " (" + names + ")")
+      ->transform(CLI::CheckedTransformer(byName).description(""));
 }
 
 // --display, --layout, --viewing-distance-mm.

@@ -41,11 +41,7 @@ std::unique_ptr<CameraModel> makeViewCamera(const CameraDescription& c, const Di
                                                  : glm::length(pose.lookAt - pose.eye);
   const CameraModelKind k = o.kind.value_or(c.model);
   if (k == CameraModelKind::RealLens) {
-    RealLensCameraModel::Settings s;
-    s.fNumber = c.fNumber;
-    s.focusDistanceMm = focus;
-    s.focusMode = c.focusMode;
-    s.fresnel = c.fresnel;
+    const RealLensSettings s = realLensSettings(c, focus);
     if (samePrecomputed)
       if (auto moved = samePrecomputed->sameLensAt(pose, sensor, s)) return moved;
     return std::make_unique<RealLensCameraModel>(c.lens, sensor, pose, s);

@@ -62,7 +62,7 @@ std::string compareJson(const CompareRunSettings& s, const CompareRunResult& r) 
   j["space_b"] = co.spaceB;
   j["values"] = metricValuesName(co.values);
   j["peak"] = co.peak;
-  j["ssim_channels"] = co.ssimChannels == SsimChannels::PerChannelMean ? "channels" : "luminance";
+  j["ssim_channels"] = ssimChannelsName(co.ssimChannels);
   j["white_luminance"] = co.whiteLuminance;
   return j.dump(2) + "\n";
 }
