@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "display/display.h"
 #include "display/display_info.h"
 
@@ -21,7 +22,7 @@ void addDisplayCommand(CLI::App& app) {
       "info", "Print derived quantities: f, viewing angle, reference image plane, EI vs lens pitch, viewing zones, "
               "depth range, assumptions");
   info->add_option("FILE", opts->file, "Display JSON (default: optics/displays/paper-prototype.json)");
-  info->add_flag("--json", opts->json, "Print JSON instead of text");
+  addSetting(info, "json", opts->json);
   info->callback([opts] {
     const std::string path = displayPathOrDefault(opts->file);
     Display d = loadDisplay(path);

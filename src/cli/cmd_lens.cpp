@@ -1,7 +1,6 @@
 // inim lens info FILE [--json] [--thickness-convention after|before] [--wavelength-nm W]:
 // first-order properties of a camera lens (EFL, BFL, FFL, f-number, pupils, principal
 // planes), found by real ray tracing of near-axis rays.
-#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -9,7 +8,7 @@
 #include "camera/lens_analysis.h"
 #include "camera/lens_loader.h"
 #include "cli/commands.h"
-#include "core/error.h"
+#include "cli/options.h"
 
 namespace inim::cli {
 
@@ -29,16 +28,10 @@ void addLensCommand(CLI::App& app) {
   info->add_option("FILE", opts->file,
                    "Lens file (pbrt-v4 .dat or inim .json) or a catalog name under optics/lenses/ (e.g. dgauss.50mm)")
       ->required();
-  info->add_flag("--json", opts->json, "Print JSON (keys efl_mm, bfl_mm, ffl_mm, f_number, entrance_pupil, ...)");
-  info->add_option("--thickness-convention", opts->convention,
-                   "Override the file's thickness convention: 'after' (distance to the next surface, pbrt/Zemax) "
-                   "or 'before' (distance from the previous surface)")
-      ->check(CLI::IsMember({"after", "before"}));
-  info->add_option("--wavelength-nm", opts->wavelengthNm, "Wavelength of the trace, nm (360..830)")
-      ->capture_default_str();
+  addSetting(info, "json", opts->json);
+  addSetting(info, "thickness_convention", opts->convention);
+  addSetting(info, "wavelength_nm", opts->wavelengthNm);
   info->callback([opts] {
-    if (!std::isfinite(opts->wavelengthNm) || opts->wavelengthNm < 360.0 || opts->wavelengthNm > 830.0)
-      throw InputError("", "--wavelength-nm", std::to_string(opts->wavelengthNm), "a wavelength in 360..830 nm");
     LensLoadOptions lo;
     if (opts->convention == "after") lo.thicknessConvention = ThicknessConvention::After;
     if (opts->convention == "before") lo.thicknessConvention = ThicknessConvention::Before;

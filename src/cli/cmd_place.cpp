@@ -29,17 +29,13 @@ struct PlaceOpts {
 void addPlaceCommand(CLI::App& app) {
   auto o = std::make_shared<PlaceOpts>();
   CLI::App* cmd = &app;
-  auto* sceneOpt = cmd->add_option("--scene", o->scene, "Scene JSON (default: scenes/paper-fig7.json)");
-  cmd->add_option("--field", o->session.fieldPath,
-                  "The field to place: a scene JSON, a trained radiance field (.inimrf) or Gaussian splats (.ply, .splat)")
-      ->excludes(sceneOpt);
-  cmd->add_option("--display", o->session.displayPath, "Display JSON (default: optics/displays/paper-prototype.json)");
-  cmd->add_option("--run", o->session.runPath, "Run file to start from (placement, display, VCP, layout)");
-  cmd->add_option("--out", o->session.outDir, "The only folder the page writes into")->capture_default_str();
-  cmd->add_option("--port", o->server.port, "Port to listen on (0: a free one)")->capture_default_str()
-      ->check(CLI::Range(0, 65535));
-  cmd->add_option("--host", o->server.host, "Address to listen on; anything but loopback exposes the page to the network")
-      ->capture_default_str();
+  auto* sceneOpt = addSetting(cmd, "scene", o->scene);
+  addSetting(cmd, "field", o->session.fieldPath)->excludes(sceneOpt);
+  addSetting(cmd, "display", o->session.displayPath);
+  addSetting(cmd, "run", o->session.runPath);
+  addSetting(cmd, "out", o->session.outDir);
+  addSetting(cmd, "port", o->server.port);
+  addSetting(cmd, "host", o->server.host);
   addRunOptions(cmd, o->runOpts, [o] {
     if (!o->scene.empty()) o->session.fieldPath = o->scene;
     o->runOpts.applySeed(o->session.seed);

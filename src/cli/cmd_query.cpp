@@ -16,15 +16,14 @@ void addQueryCommand(CLI::App& app) {
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = &app;
-  cmd->add_option("--field", o->s.fieldPath, "Scene JSON, trained radiance field (.inimrf) or Gaussian splats (.ply, .splat)")->required();
-  cmd->add_option("--rays", o->s.raysPath, "Ray table (.npy or .exr) from `inim rays --for-field`")->required();
-  cmd->add_option("--out", o->s.out, "Colour table (.npy: float32 N x 5, or .exr: R G B A Z)")->required();
+  addSetting(cmd, "field", o->s.fieldPath)->required();
+  addSetting(cmd, "rays", o->s.raysPath)->required();
+  addSetting(cmd, "out", o->s.out)->required();
   addRunOptions(cmd, o->run, [o] {
     const auto t0 = std::chrono::steady_clock::now();
     o->run.applySeed(o->s.seed);
     const QueryRunResult r = runQuery(o->s);
-    std::printf("queried %s (%s) along %zu rays of %s: %s in %.2f s\n", r.fieldPath.c_str(), fieldKindName(r.fieldKind),
-                r.rays, o->s.raysPath.c_str(), o->s.out.c_str(), secondsSince(t0));
+    std::printf("%s", queryText(o->s, r, secondsSince(t0)).c_str());
   });
 }
 

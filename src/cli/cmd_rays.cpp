@@ -40,8 +40,9 @@ void checkCombinations(CLI::App* cmd, const RaysOpts& o) {
     throw InputError("", "--for-field", "with " + std::string(o.inOpt->count() ? "--in" : o.eiOpt->count() ? "--ei" : "--zemax-macro"),
                      "the whole display's query rays (no --in, --ei or --zemax-macro)");
   }
-  if (o.inOpt->count() && (o.gapOpt->count() || o.display.layoutOpt->count() || o.display.distanceOpt->count() ||
-                           o.eiOpt->count() || !o.display.display.empty() || o.realLens.onOpt->count()))
+  const DisplayArgs& d = o.display;
+  if (o.inOpt->count() && (o.gapOpt->count() || d.layout || d.viewingDistanceMm || o.eiOpt->count() || d.display ||
+                           o.realLens.on))
     throw InputError("", "--in", "\"" + o.s.in + "\"",
                      "no --display, --gap-mm, --layout, --viewing-distance-mm, --ei or --real-lens with --in (the "
                      "file already holds the rays)");
@@ -50,9 +51,8 @@ void checkCombinations(CLI::App* cmd, const RaysOpts& o) {
 RayExportSettings exportSettings(const RaysOpts& o) {
   RayExportSettings s = o.s;
   if (!s.in.empty()) return s;
-  const RealLensRayOptions realLens = realLensRayOptions(o.realLens);
-  if (o.realLens.on) s.realLens = realLens;
-  s.displayPath = o.display.display;
+  s.realLens = o.realLens.resolve();
+  s.displayPath = o.display.display.value_or("");
   s.layout = layoutOverride(o.display);
   if (!s.forField) return s;
   const RunFile run = o.runFile.empty() ? RunFile{} : loadRunFile(o.runFile);
@@ -70,39 +70,23 @@ void addRaysCommand(CLI::App& app) {
   auto o = std::make_shared<RaysOpts>();
   CLI::App* cmd = &app;
   addDisplayOptions(cmd, o->display);
-  cmd->add_option("--out", o->s.out, "Output: FILE.txt (Zemax ray text, \"x, y, z, l, m, n\" %.8f) or FILE.irays")
-      ->required();
-  o->gapOpt = cmd->add_option("--gap-mm", o->s.gapMm, "Generate at this panel gap instead of generation_gap_mm");
-  cmd->add_flag("--zemax-macro", o->s.zemaxMacro,
-                "Text as the paper's ZPL macro wrote it: UTF-16LE with BOM, CRLF, two header lines");
-  o->eiOpt = cmd->add_option("--ei", o->s.ei,
-                             "Only EI K,L (K from the left, L from the top), positions relative to its pinhole (the "
-                             "macro's single-EI file); .txt only");
-  addRealLensOptions(cmd, o->realLens,
-                     "Trace every pixel's ray through the real MLA (refraction at n(lambda), the physical lens "
-                     "centres) instead of the pinhole model; origins moved back to z = 0");
-  o->inOpt = cmd->add_option("--in", o->s.in,
-                             "Convert this ray file (.txt: Zemax text, UTF-8 or UTF-16LE; .irays) to --out instead "
-                             "of generating rays");
-  cmd->add_flag("--for-field", o->s.forField,
-                "Write the orthoscopic QUERY rays instead (field frame, after the inverse placement; reversed display "
-                "rays starting on the VCP) as a table for an external radiance field: --out FILE.npy (float32 N x 8: "
-                "ox oy oz dx dy dz near far) or FILE.exr; fill in one colour per row and pass it to `inim eia "
-                "--field-colors`");
-  cmd->add_option("--run", o->runFile, "With --for-field: run file of the EIA (placement, VCP, spp)");
+  addSetting(cmd, "out", o->s.out)->required();
+  o->gapOpt = addSetting(cmd, "gap_mm", o->s.gapMm);
+  addSetting(cmd, "zemax_macro", o->s.zemaxMacro);
+  o->eiOpt = addSetting(cmd, "ei", o->s.ei);
+  addRealLensOptions(cmd, o->realLens);
+  o->inOpt = addSetting(cmd, "in", o->s.in);
+  addSetting(cmd, "for_field", o->s.forField);
+  addSetting(cmd, "run", o->runFile);
   addPlacementOptions(cmd, o->place);
-  cmd->add_option("--vcp-mm", o->vcpMm, "With --for-field: VCP distance in front of the MLA, mm")
-      ->default_str(formatNumber(o->s.vcpMm));
-  cmd->add_option("--spp", o->spp, "With --for-field: samples per display ray, as for inim eia")
-      ->default_str(std::to_string(o->s.spp));
+  addSetting(cmd, "vcp_mm", o->vcpMm)->default_str(formatNumber(o->s.vcpMm));
+  addSetting(cmd, "spp", o->spp)->default_str(std::to_string(o->s.spp));
   addRunOptions(cmd, o->run, [o, cmd] {
     const auto t0 = std::chrono::steady_clock::now();
     (void)rayFileFormat(o->s.out, "--out", o->s.forField);
     checkCombinations(cmd, *o);
     const RayExportResult r = exportRays(exportSettings(*o));
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("wrote %llu rays to %s: %s, in %.2f s\n%s", (unsigned long long)r.count, o->s.out.c_str(), r.what.c_str(),
-                s, r.notes.c_str());
+    std::printf("%s", exportText(o->s, r, secondsSince(t0)).c_str());
   });
 }
 

@@ -24,15 +24,10 @@ struct DataArgs {
 };
 
 void addDataOptions(CLI::App* cmd, DataArgs& a) {
-  cmd->add_option("--data", a.data,
-                  "Dataset: a folder with transforms.json / transforms_train.json (Blender, Nerfstudio, instant-ngp) "
-                  "or a Middlebury *_par.txt, or the file itself")
-      ->required();
-  cmd->add_option("--downscale", a.options.downscale, "Integer image downscale factor (intrinsics follow)")->capture_default_str();
-  cmd->add_option("--holdout-every", a.options.holdoutEvery, "Frame i is held out for testing when i % N == 0 (0: none)")
-      ->capture_default_str();
-  cmd->add_option("--background", a.background, "What transparent pixels composite onto: white, black or r,g,b")
-      ->default_str("white");
+  addSetting(cmd, "data", a.data)->required();
+  addSetting(cmd, "downscale", a.options.downscale);
+  addSetting(cmd, "holdout_every", a.options.holdoutEvery);
+  addSetting(cmd, "background", a.background)->default_str("white");
 }
 
 DatasetOptions datasetOptions(const DataArgs& a) {
@@ -60,17 +55,9 @@ void runTrain(const TrainOpts& o) {
   cfg.stageStarts = o.stageStarts ? parseIntList(*o.stageStarts, "stage_starts")
                                   : defaultStageStarts(cfg.iterations, int(cfg.resolutions.size()));
   s.data = datasetOptions(o.data);
-  if (!o.quiet)
-    s.loaded = [](const Dataset& data) {
-      std::printf("%s", datasetText(data).c_str());
-      std::fflush(stdout);
-    };
+  if (!o.quiet) s.loaded = [](const Dataset& data) { std::printf("%s", datasetText(data).c_str()), std::fflush(stdout); };
   if (!o.quiet && ProgressBar::stderrIsTerminal())
-    s.progress = [](const TrainProgress& p) {
-      std::fprintf(stderr, "\rtrain  iteration %d/%d  loss %.5f  PSNR %.2f dB  grid %dx%dx%d  %.0f s   ", p.iteration,
-                   p.iterations, p.loss, p.psnr, p.res.x, p.res.y, p.res.z, p.elapsedSeconds);
-      std::fflush(stderr);
-    };
+    s.progress = [](const TrainProgress& p) { std::fputs(trainProgressText(p).c_str(), stderr); };
   const TrainingRunResult r = runTraining(s);
   if (s.progress) std::fprintf(stderr, "\n");
   if (o.quiet) return;
@@ -83,51 +70,41 @@ void addTrainCommand(CLI::App& app) {
   auto o = std::make_shared<TrainOpts>();
   CLI::App* cmd = &app;
   addDataOptions(cmd, o->data);
-  cmd->add_option("--out", o->s.modelPath, "Model file (.inimrf)")->required();
-  cmd->add_option("--log", o->s.logPath, "CSV log of iteration, loss, PSNR, time (default: beside --out, .csv)");
-  cmd->add_option("--iterations", o->s.config.iterations, "Training iterations")->capture_default_str();
-  cmd->add_option("--batch", o->s.config.batchSize, "Rays per iteration")->capture_default_str();
-  cmd->add_option("--time-budget-s", o->s.config.timeBudgetSeconds, "Also stop after this many seconds (then not deterministic)");
-  cmd->add_option("--sh-degree", o->s.config.shDegree, "Spherical-harmonic degree of the colour, 0-2")->capture_default_str();
-  cmd->add_option("--resolutions", o->resolutions, "Grid resolution (longest side, vertices) of each stage")
-      ->default_str([&] {
+  addSetting(cmd, "out", o->s.modelPath)->required();
+  addSetting(cmd, "log", o->s.logPath);
+  addSetting(cmd, "iterations", o->s.config.iterations);
+  addSetting(cmd, "batch", o->s.config.batchSize);
+  addSetting(cmd, "time_budget_s", o->s.config.timeBudgetSeconds);
+  addSetting(cmd, "sh_degree", o->s.config.shDegree);
+  addSetting(cmd, "resolutions", o->resolutions)->default_str([&] {
         std::string list;
         for (int r : o->s.config.resolutions) list += (list.empty() ? "" : ",") + std::to_string(r);
         return list;
       }());
-  cmd->add_option("--stage-starts", o->stageStarts,
-                  "Iteration at which each stage starts (default: 0, then 1/6 and 1/2 of the iterations)");
-  cmd->add_flag("--quiet", o->quiet, "Print nothing but warnings");
+  addSetting(cmd, "stage_starts", o->stageStarts);
+  addSetting(cmd, "quiet", o->quiet);
   addRunOptions(cmd, o->run, [o] { runTrain(*o); });
 }
 
 void addEvalCommand(CLI::App& app) {
   struct Opts {
+    EvalRunSettings s;
     DataArgs data;
-    std::string model, out;
-    bool all = false, quiet = false;
+    bool quiet = false;
     RunOptions run;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = &app;
-  cmd->add_option("--model", o->model, "Model file (.inimrf)")->required();
+  addSetting(cmd, "model", o->s.modelPath)->required();
   addDataOptions(cmd, o->data);
-  cmd->add_option("--out", o->out, "Folder for the rendered views (PNG, beside the photos) and metrics.json/.csv");
-  cmd->add_flag("--all", o->all, "Evaluate every frame, not only the held-out ones");
-  cmd->add_flag("--quiet", o->quiet, "Print only the means");
+  addSetting(cmd, "out", o->s.outDir);
+  addSetting(cmd, "all", o->s.allFrames);
+  addSetting(cmd, "quiet", o->quiet);
   addRunOptions(cmd, o->run, [o] {
-    EvalRunSettings s;
-    s.modelPath = o->model;
+    EvalRunSettings s = o->s;
     s.dataPath = o->data.data;
     s.data = datasetOptions(o->data);
-    s.allFrames = o->all;
-    s.outDir = o->out;
-    const EvalRunResult r = runEval(s);
-    if (!o->quiet)
-      for (const auto& v : r.scores)
-        std::printf("frame %4d  PSNR %6.2f dB  SSIM %.4f  %s\n", v.frame, v.psnr, v.ssim, v.image.c_str());
-    std::printf("mean over %zu views: PSNR %.2f dB, SSIM %.4f (%.1f s)\n", r.scores.size(), meanPsnr(r.scores),
-                meanSsim(r.scores), r.seconds);
+    std::printf("%s", evalText(runEval(s), !o->quiet).c_str());
   });
 }
 

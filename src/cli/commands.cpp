@@ -1,5 +1,9 @@
 #include "cli/commands.h"
 
+#include <algorithm>
+
+#include "core/format.h"
+
 namespace inim::cli {
 
 const std::vector<Command>& commands() {
@@ -28,6 +32,18 @@ const std::vector<Command>& commands() {
 
 void addCommands(CLI::App& app) {
   for (const Command& c : commands()) c.add(*app.add_subcommand(c.name, c.summary));
+}
+
+std::string unknownCommandMessage(int argc, char** argv) {
+  int i = 1;  // past the program's own options (--max-memory VALUE)
+  while (i < argc && argv[i][0] == '-') i += std::string(argv[i]) == "--max-memory" ? 2 : 1;
+  if (i >= argc) return "";
+  std::vector<std::string> names;
+  for (const Command& c : commands()) names.push_back(c.name);
+  const std::string word = argv[i], near = closestName(word, names, 3);
+  if (std::find(names.begin(), names.end(), word) != names.end()) return "";
+  return "unknown command '" + word.substr(0, 60) + "'" + (near.empty() ? "" : "; did you mean '" + near + "'?") +
+         " (inim --help lists the commands)";
 }
 
 }  // namespace inim::cli

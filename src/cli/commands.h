@@ -5,6 +5,7 @@
 // becomes exit status 2 (main.cpp), its setting named by its flag (cli/options.h). Adding a
 // command is a cmd_*.cpp and a line in commands.cpp.
 #include <CLI/CLI.hpp>
+#include <string>
 #include <vector>
 
 namespace inim::cli {
@@ -19,6 +20,9 @@ struct Command {
 const std::vector<Command>& commands();
 // Adds every command of the table to `app`.
 void addCommands(CLI::App& app);
+// For a command line whose command is not in the table: "unknown command 'X'" and the nearest
+// name; "" otherwise.
+std::string unknownCommandMessage(int argc, char** argv);
 
 void addRenderCommand(CLI::App& cmd);
 void addDisplayCommand(CLI::App& cmd);

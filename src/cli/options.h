@@ -4,15 +4,19 @@
 // given on the command line, else the run file's value, else the default"; and the table that
 // names a library setting by its flag when an error is printed.
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <initializer_list>
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
 
 #include "core/error.h"
+#include "core/progress.h"
+#include "core/settings_table.h"
 #include "field/placement.h"
 #include "mla_optics/real_lens_rays.h"
 #include "display/layout_override.h"
@@ -29,56 +33,77 @@ struct RunOptions {
 };
 void addRunOptions(CLI::App* cmd, RunOptions& opts, std::function<void()> body);
 
-// An option's value as given on the command line; none when it was not.
+// The settings-table entry for `key` as this command reads it (std::logic_error when the table
+// has none: every option is documented there).
+const SettingInfo& settingFor(const CLI::App* cmd, std::string_view key);
+// The entry's checks on an option: a number's range, a name's choices (each element of a list).
+CLI::Option* withSettingChecks(CLI::Option* option, const SettingInfo& info);
+
+template <class T> struct SettingType { static constexpr bool optional = false, list = false; };
+template <class T> struct SettingType<std::optional<T>> { static constexpr bool optional = true, list = false; };
+template <class T> struct SettingType<std::vector<T>> { static constexpr bool optional = false, list = true; };
+
+// The option of the library setting `key`, written into `target`: its flag, help, range and
+// choices from the settings table; a switch for a bool; a comma-separated list for a vector;
+// the default shown from `target` unless the help says what it is. `alias` is a first flag
+// name that the option also answers to (as --scene for --field).
 template <class T>
-std::optional<T> givenValue(const CLI::Option* option, const T& value) {
-  return option && option->count() ? std::optional<T>(value) : std::nullopt;
+CLI::Option* addSetting(CLI::App* cmd, std::string_view key, T& target, const std::string& alias = "") {
+  const SettingInfo& info = settingFor(cmd, key);
+  const std::string names = (alias.empty() ? "" : alias + ",") + settingFlag(key);
+  if constexpr (std::is_same_v<T, bool>) {
+    return cmd->add_flag(names, target, std::string(info.help));
+  } else {
+    using Type = SettingType<T>;
+    CLI::Option* option = cmd->add_option(names, target, std::string(info.help));
+    if constexpr (Type::list) option->delimiter(',');
+    if (!Type::optional && info.help.find("default") == std::string_view::npos) option->capture_default_str();
+    return withSettingChecks(option, info);
+  }
 }
 
-// An option that names one of `values` by the library's own name for it (nameOf), written
-// into `target` (an enum, or an optional one); --help lists the names.
+
+// The option of setting `key` (flag and help from the settings table) that names one of
+// `values` by the library's own name for it (nameOf), written into `target` (an enum, or an
+// optional one: then absent means the library's choice); --help lists the names.
 template <class E, class Target>
-CLI::Option* addChoiceOption(CLI::App* cmd, const std::string& flag, Target& target, std::initializer_list<E> values,
-                             const char* (*nameOf)(E), const std::string& help) {
+CLI::Option* addChoiceSetting(CLI::App* cmd, std::string_view key, Target& target, std::initializer_list<E> values,
+                              const char* (*nameOf)(E)) {
   std::map<std::string, E> byName;
   std::string names;
   for (E v : values) byName[nameOf(v)] = v, names += std::string(names.empty() ? "" : ", ") + nameOf(v);
-  return cmd->add_option(flag, target, help + " (" + names + ")")
-      ->transform(CLI::CheckedTransformer(byName).description(""));
+  CLI::Option* option = cmd->add_option(settingFlag(key), target, std::string(settingFor(cmd, key).help) + " (" +
+                                                                      names + ")");
+  if constexpr (std::is_same_v<Target, E>) option->default_str(nameOf(target));
+  return option->transform(CLI::CheckedTransformer(byName).description(""));
 }
 
 // --display, --layout, --viewing-distance-mm.
-struct DisplayArgs {
-  std::string display, layout;
-  double viewingDistanceMm = 0.0;
-  CLI::Option *displayOpt = nullptr, *layoutOpt = nullptr, *distanceOpt = nullptr;
-};
+using DisplayArgs = DisplayGiven;
 void addDisplayOptions(CLI::App* cmd, DisplayArgs& a);
-// The layout options given on the command line, else the run file's.
-LayoutOverride layoutOverride(const DisplayArgs& a, const RunFile* run = nullptr);
+// The layout options given, over the run file's (resolveLayout).
+inline LayoutOverride layoutOverride(const DisplayArgs& a, const RunFile* run = nullptr) {
+  return resolveLayout(run, a.layout, a.viewingDistanceMm);
+}
 
 // --scale, --rotate-deg, --translate-mm.
 struct PlacementArgs {
   std::string scale, rotate, translate;
 };
 void addPlacementOptions(CLI::App* cmd, PlacementArgs& a);
-PlacementOverride placementOverride(const PlacementArgs& a);
+inline PlacementOverride placementOverride(const PlacementArgs& a) {
+  return parsePlacementOverride(a.scale, a.rotate, a.translate);
+}
 
-// --real-lens, --real-lens-ray, --wavelength-nm.
+// --real-lens, --real-lens-ray, --wavelength-nm: resolveRealLens's arguments.
 struct RealLensArgs {
   bool on = false;
-  std::string model = "centroid";
-  double wavelengthNm = kLambdaDNm;
-  CLI::Option *onOpt = nullptr, *modelOpt = nullptr, *wavelengthOpt = nullptr;
+  std::optional<std::string> model;
+  std::optional<double> wavelengthNm;
+  std::optional<RealLensRayOptions> resolve() const { return resolveRealLens(on, model, wavelengthNm); }
 };
-void addRealLensOptions(CLI::App* cmd, RealLensArgs& a, const std::string& help);
-// The options checked (InputError naming the option when one is given without --real-lens).
-RealLensRayOptions realLensRayOptions(const RealLensArgs& a);
+void addRealLensOptions(CLI::App* cmd, RealLensArgs& a);
 
-// Wall-clock seconds since `start`, for the times the commands print.
-inline double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The flag that sets a library setting ("spp" -> "--spp", "vcp_mm" -> "--vcp-mm"); a key that
 // no flag sets is returned as it is.

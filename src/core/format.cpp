@@ -1,6 +1,8 @@
 #include "core/format.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 
@@ -16,6 +18,38 @@ std::string formatNumber(double v, const char* format) {
   char buf[64];
   std::snprintf(buf, sizeof buf, format, v);
   return buf;
+}
+
+std::string formatText(const char* format, ...) {
+  va_list args, again;
+  va_start(args, format);
+  va_copy(again, args);
+  const int n = std::vsnprintf(nullptr, 0, format, args);
+  va_end(args);
+  std::string text(n > 0 ? size_t(n) : 0, '\0');
+  if (n > 0) std::vsnprintf(text.data(), text.size() + 1, format, again);
+  va_end(again);
+  return text;
+}
+
+size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string closestName(const std::string& word, const std::vector<std::string>& names, size_t maxEdits) {
+  std::string best;
+  size_t bestEdits = maxEdits + 1;
+  for (const std::string& name : names)
+    if (const size_t d = editDistance(word, name); d < bestEdits) bestEdits = d, best = name;
+  return best;
 }
 
 std::string lowerExtension(const std::string& path) {

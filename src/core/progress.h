@@ -1,5 +1,6 @@
 #pragma once
-// A progress bar on stderr, shown only when stderr is a terminal (quiet when piped).
+// A progress bar on stderr, shown only when stderr is a terminal (quiet when piped), and the
+// wall-clock seconds that commands and runs report.
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -7,6 +8,11 @@
 #include <string>
 
 namespace inim {
+
+// Wall-clock seconds since `start`.
+inline double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 class ProgressBar {
  public:

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 
+#include "core/format.h"
 #include "display/cover_glass.h"
 #include "spectral/dispersion.h"
 
@@ -120,41 +120,32 @@ Json gapJson(const GapInfo& g) {
   return j;
 }
 
-std::string fmt(const char* f, ...) {
-  char buf[512];
-  va_list ap;
-  va_start(ap, f);
-  std::vsnprintf(buf, sizeof buf, f, ap);
-  va_end(ap);
-  return buf;
-}
-
 std::string optText(const std::optional<double>& v, const char* none) {
-  return v ? fmt("%.2f mm", *v) : std::string(none);
+  return v ? formatText("%.2f mm", *v) : std::string(none);
 }
 
 std::string gapText(const char* title, const GapInfo& g) {
-  std::string s = fmt("%s gap g = %.4g mm\n", title, g.gapMm);
-  s += fmt("  viewing angle psi = 2 atan(P/2g)    %.3f deg (+-%.3f); one EI fills %.3f deg\n",
+  std::string s = formatText("%s gap g = %.4g mm\n", title, g.gapMm);
+  s += formatText("  viewing angle psi = 2 atan(P/2g)    %.3f deg (+-%.3f); one EI fills %.3f deg\n",
            g.viewingAngleDeg, 0.5 * g.viewingAngleDeg, g.eiViewingAngleDeg);
   if (g.referencePlaneMm)
-    s += fmt("  reference image plane L = gf/(g-f) %.3f mm (%s)\n", *g.referencePlaneMm,
+    s += formatText("  reference image plane L = gf/(g-f) %.3f mm (%s)\n", *g.referencePlaneMm,
              g.referencePlaneKind.c_str());
   else
     s += "  reference image plane L = gf/(g-f) at infinity (g = f)\n";
-  s += fmt("  pixel angular pitch atan(p/g)       %.4f deg\n", g.pixelAngularPitchDeg);
+  s += formatText("  pixel angular pitch atan(p/g)       %.4f deg\n", g.pixelAngularPitchDeg);
   if (g.opticalGapMm) {
-    s += fmt("  through the panel's cover glass: optical gap g_eff = g - t(1 - 1/n) %.4f mm (550 nm), psi %.3f deg",
+    s += formatText("  through the panel's cover glass: optical gap g_eff = g - t(1 - 1/n) %.4f mm (550 nm), psi %.3f deg",
              *g.opticalGapMm, *g.opticalViewingAngleDeg);
-    s += g.opticalReferencePlaneMm ? fmt(", L %.3f mm\n", *g.opticalReferencePlaneMm) : std::string(", L at infinity\n");
+    s += g.opticalReferencePlaneMm ? formatText(", L %.3f mm\n", *g.opticalReferencePlaneMm) : std::string(", L at infinity\n");
   }
   s += "  EI-centre chief rays (physical lens centres) converge at x: " +
        optText(g.convergenceXMm, "never (parallel)") + ", y: " +
        optText(g.convergenceYMm, "never (parallel)") + "  (< 0: virtual point behind the MLA)\n";
-  s += fmt("  edge chief-ray angles: left %.3f, right %.3f, top %.3f, bottom %.3f deg\n",
+  s += formatText("  edge chief-ray angles: left %.3f, right %.3f, top %.3f, bottom %.3f deg\n",
            g.edgeChiefAngleXDeg[0], g.edgeChiefAngleXDeg[1], g.edgeChiefAngleYDeg[0],
            g.edgeChiefAngleYDeg[1]);
-  s += fmt("  depth range |z| <= %.3g mm; pixel footprint p|z|/g reaches P at |z| = %.4g mm\n",
+  s += formatText("  depth range |z| <= %.3g mm; pixel footprint p|z|/g reaches P at |z| = %.4g mm\n",
            g.depthRangeMm, g.pixelFootprintDepthMm);
   return s;
 }
@@ -317,58 +308,58 @@ Json toJson(const DisplayInfo& r) {
 
 std::string toText(const DisplayInfo& r) {
   std::string s;
-  s += fmt("Display: %s\n", r.name.c_str());
-  if (!r.file.empty()) s += fmt("  file %s\n", r.file.c_str());
-  s += fmt("Panel: %d x %d px, pixel %.4f mm, %.2f x %.2f mm\n", r.panelW, r.panelH, r.pixelMm,
+  s += formatText("Display: %s\n", r.name.c_str());
+  if (!r.file.empty()) s += formatText("  file %s\n", r.file.c_str());
+  s += formatText("Panel: %d x %d px, pixel %.4f mm, %.2f x %.2f mm\n", r.panelW, r.panelH, r.pixelMm,
            r.panelWidthMm, r.panelHeightMm);
-  s += fmt("MLA: %s lattice, pitch P = %.4f mm, f = %.4f mm (%s)", r.lattice.c_str(), r.lensPitchMm,
+  s += formatText("MLA: %s lattice, pitch P = %.4f mm, f = %.4f mm (%s)", r.lattice.c_str(), r.lensPitchMm,
            r.focus.focalLengthMm, r.focus.source.c_str());
   if (r.focus.focalFromRadiusMm)
-    s += fmt("; R/(n_d-1) = %.4f mm with n_d = %.4f", *r.focus.focalFromRadiusMm, *r.focus.indexD);
+    s += formatText("; R/(n_d-1) = %.4f mm with n_d = %.4f", *r.focus.focalFromRadiusMm, *r.focus.indexD);
   s += "\n";
   if (r.hex) {
     const HexInfo& h = *r.hex;
-    s += fmt("  hex lattice: %lld lenslets (%d rows of %d), row pitch P sqrt(3)/2 = %.4f mm, cell area "
+    s += formatText("  hex lattice: %lld lenslets (%d rows of %d), row pitch P sqrt(3)/2 = %.4f mm, cell area "
              "%.4f mm^2; lenslet array %.3f x %.3f mm (%.1f %% of its bounding box)\n",
              (long long)h.lensletCount, r.eiRows, r.eiCols, h.lensRowPitchMm, h.lensCellAreaMm2,
              h.activeWidthMm, h.activeHeightMm, 100.0 * h.lensletFill);
-    s += fmt("EIs: %d x %d hex EIs (rows of %d), %g px flat-to-flat, layout %s\n", r.eiCols, r.eiRows,
+    s += formatText("EIs: %d x %d hex EIs (rows of %d), %g px flat-to-flat, layout %s\n", r.eiCols, r.eiRows,
              r.eiCols, h.eiFlatPx, r.layout.c_str());
-    s += fmt("  pixels per EI: %lld to %lld, mean %.2f (hexagon area %.2f px); bounding box %d x %d px; "
+    s += formatText("  pixels per EI: %lld to %lld, mean %.2f (hexagon area %.2f px); bounding box %d x %d px; "
              "%.1f %% of the EIA rectangle is in an EI\n",
              (long long)h.eiPixelsMin, (long long)h.eiPixelsMax, h.eiPixelsMean, h.eiNominalPixels, h.eiBoxW,
              h.eiBoxH, 100.0 * h.eiaFill);
-    s += fmt("  viewing angle (reconstruction gap) %.3f deg across the flats (x), %.3f deg corner to corner (y)\n",
+    s += formatText("  viewing angle (reconstruction gap) %.3f deg across the flats (x), %.3f deg corner to corner (y)\n",
              r.reconstruction.viewingAngleDeg, r.reconstruction.viewingAngleYDeg);
   } else {
-    s += fmt("EIs: %d x %d of %d x %d px, layout %s\n", r.eiCols, r.eiRows, r.eiW, r.eiH, r.layout.c_str());
+    s += formatText("EIs: %d x %d of %d x %d px, layout %s\n", r.eiCols, r.eiRows, r.eiW, r.eiH, r.layout.c_str());
   }
-  s += fmt("  EI pitch %.5f x %.5f mm (%.3f x %.3f px; nominal %.5f mm), %.4f x lens pitch\n",
+  s += formatText("  EI pitch %.5f x %.5f mm (%.3f x %.3f px; nominal %.5f mm), %.4f x lens pitch\n",
            r.eiPitchXMm, r.eiPitchYMm, r.eiPitchXMm / r.pixelMm, r.eiPitchYMm / r.pixelMm,
            r.nominalEiPitchXMm, r.eiPitchXMm / r.lensPitchMm);
-  s += fmt("EIA: %d x %d px = %.3f x %.3f mm, at panel pixel (%d, %d); its centre is %.4f, %.4f mm "
+  s += formatText("EIA: %d x %d px = %.3f x %.3f mm, at panel pixel (%d, %d); its centre is %.4f, %.4f mm "
            "from the panel centre\n",
            r.eiaW, r.eiaH, r.eiaWidthMm, r.eiaHeightMm, r.panelCol0, r.panelRow0,
            r.eiaCentreOffsetXMm, r.eiaCentreOffsetYMm);
-  s += fmt("Rays: %lld (one per EI pixel)\n", (long long)r.numRays);
-  s += fmt("Generation rays: pinhole pitch %.5f x %.5f mm; central rays converge at x: %s; "
+  s += formatText("Rays: %lld (one per EI pixel)\n", (long long)r.numRays);
+  s += formatText("Generation rays: pinhole pitch %.5f x %.5f mm; central rays converge at x: %s; "
            "edge central-ray angle %.3f / %.3f deg\n",
            r.pinholePitchXMm, r.pinholePitchYMm,
            optText(r.generationConvergenceXMm, "never (parallel)").c_str(),
            r.generationEdgeAngleXDeg[0], r.generationEdgeAngleXDeg[1]);
-  s += fmt("  pinhole - lens centre at the left/top edge: %.4f / %.4f mm; reconstruction scale "
+  s += formatText("  pinhole - lens centre at the left/top edge: %.4f / %.4f mm; reconstruction scale "
            "error P/p_pinhole - 1 = %.3f %% / %.3f %%\n",
            r.edgePinholeOffsetXMm, r.edgePinholeOffsetYMm, 100.0 * r.scaleErrorX, 100.0 * r.scaleErrorY);
   s += gapText("Generation", r.generation);
   s += gapText("Reconstruction", r.reconstruction);
   if (r.viewingZone) {
     const auto& z = *r.viewingZone;
-    s += fmt("Viewing zones at %.4g mm (reconstruction gap, physical lenses):\n", z.distanceMm);
-    s += fmt("  one EI's zone %.2f x %.2f mm; centre EI's zone centred at (%.2f, %.2f) mm\n",
+    s += formatText("Viewing zones at %.4g mm (reconstruction gap, physical lenses):\n", z.distanceMm);
+    s += formatText("  one EI's zone %.2f x %.2f mm; centre EI's zone centred at (%.2f, %.2f) mm\n",
              z.zoneWidthXMm, z.zoneWidthYMm, z.centreZoneCentreXMm, z.centreZoneCentreYMm);
-    s += fmt("  edge EIs' zones centred at x %.2f / %.2f mm, y %.2f / %.2f mm\n", z.edgeZoneCentreXMm[0],
+    s += formatText("  edge EIs' zones centred at x %.2f / %.2f mm, y %.2f / %.2f mm\n", z.edgeZoneCentreXMm[0],
              z.edgeZoneCentreXMm[1], z.edgeZoneCentreYMm[0], z.edgeZoneCentreYMm[1]);
-    s += fmt("  common zone (every EI through its own lens): %.2f x %.2f mm", z.commonWidthXMm,
+    s += formatText("  common zone (every EI through its own lens): %.2f x %.2f mm", z.commonWidthXMm,
              z.commonWidthYMm);
     s += (z.commonWidthXMm > 0 && z.commonWidthYMm > 0) ? "\n" : " (none: edges flip)\n";
   }

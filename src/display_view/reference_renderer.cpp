@@ -13,6 +13,10 @@
 
 namespace inim {
 
+const char* cameraDispersionName(CameraDispersion d) {
+  return d == CameraDispersion::Trace ? "trace" : d == CameraDispersion::Ignore ? "ignore" : "auto";
+}
+
 namespace {
 
 constexpr uint64_t kScrambleStream = 0xFFFFFFFFFFFFull;

@@ -61,6 +61,7 @@ namespace inim {
 // camera at 648 px spreads them 0.1 px: ignoring it is 2.7 x faster and measured identical
 // within the noise of 64-sample references (docs/error-budget.md).
 enum class CameraDispersion { Auto, Trace, Ignore };
+const char* cameraDispersionName(CameraDispersion d);  // "auto", "trace", "ignore"
 constexpr double kDispersionThresholdPx = 0.25;
 
 struct ReferenceSettings {

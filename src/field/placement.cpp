@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/settings_table.h"
 #include "core/format.h"
 #include "core/json_config.h"
 #include "field/field.h"
@@ -98,6 +99,25 @@ bool boundsInFrame(const Field& field, const Transform& fieldToFrame, Point3d& l
     hi = glm::max(hi, p);
   }
   return true;
+}
+
+PlacementOverride parsePlacementOverride(const std::string& scale, const std::string& rotateDeg,
+                                         const std::string& translateMm, const std::string& prefix) {
+  // Each part in the range its key has in the files (core/settings_table.h): a negative scale
+  // would mirror the scene without a word.
+  auto parse = [&](const std::string& text, const std::string& key, bool allowScalar) {
+    const Vec3d v = parseVec3(text, prefix + key, allowScalar);
+    const SettingInfo& info = *findSetting(key, kFileScope);
+    for (int i = 0; i < 3; ++i)
+      if (!(v[i] >= info.lo && v[i] <= info.hi))
+        throw InputError("", prefix + key, "\"" + text + "\"", rangeText(info) + " for each of x, y, z");
+    return v;
+  };
+  PlacementOverride o;
+  if (!scale.empty()) o.scale = parse(scale, "scale", true);
+  if (!rotateDeg.empty()) o.rotateDeg = parse(rotateDeg, "rotate_deg", false);
+  if (!translateMm.empty()) o.translateMm = parse(translateMm, "translate_mm", false);
+  return o;
 }
 
 }  // namespace inim

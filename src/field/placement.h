@@ -54,5 +54,10 @@ bool boundsInFrame(const Field& field, const Transform& fieldToFrame, Point3d& l
 // Parses "x,y,z" (or one number when `allowScalar`, meaning x = y = z), as settings are
 // written on the command line; InputError naming `key` otherwise.
 Vec3d parseVec3(const std::string& text, const std::string& key, bool allowScalar = false);
+// A placement given as text, "" where not given: scale "S" or "sx,sy,sz", rotation "rx,ry,rz"
+// (degrees), translation "x,y,z" (mm); InputError naming the setting: `prefix` + scale,
+// rotate_deg or translate_mm.
+PlacementOverride parsePlacementOverride(const std::string& scale, const std::string& rotateDeg,
+                                         const std::string& translateMm, const std::string& prefix = "");
 
 }  // namespace inim

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/format.h"
 #include "analysis/metrics.h"
 #include "core/error.h"
 #include "field/placement.h"
@@ -177,6 +178,19 @@ void writeEvaluation(const std::string& dir, const std::string& model, const Dat
   j["mean_ssim"] = meanSsim(scores);
   std::ofstream(outputs.add((fs::path(dir) / "metrics.json").string())) << j.dump(2) << "\n";
   std::ofstream(outputs.add((fs::path(dir) / "metrics.csv").string())) << csv;
+}
+
+std::string trainProgressText(const TrainProgress& p) {
+  return formatText("\rtrain  iteration %d/%d  loss %.5f  PSNR %.2f dB  grid %dx%dx%d  %.0f s   ", p.iteration,
+                    p.iterations, p.loss, p.psnr, p.res.x, p.res.y, p.res.z, p.elapsedSeconds);
+}
+
+std::string evalText(const EvalRunResult& r, bool perView) {
+  std::string t;
+  for (const auto& v : r.scores)
+    if (perView) t += formatText("frame %4d  PSNR %6.2f dB  SSIM %.4f  %s\n", v.frame, v.psnr, v.ssim, v.image.c_str());
+  return t + formatText("mean over %zu views: PSNR %.2f dB, SSIM %.4f (%.1f s)\n", r.scores.size(),
+                        meanPsnr(r.scores), meanSsim(r.scores), r.seconds);
 }
 
 }  // namespace inim

@@ -66,6 +66,10 @@ EvalRunResult runEval(const EvalRunSettings& s);
 // What `inim train` prints: the dataset once loaded (file, frames, size, scene box), and after
 // the run the training, the held-out scores and the files written (with the total time).
 std::string datasetText(const Dataset& data);
+// One progress line (no newline; starts with a carriage return, for a terminal).
+std::string trainProgressText(const TrainProgress& p);
+// One line per scored view (when perView) and the means.
+std::string evalText(const EvalRunResult& r, bool perView);
 std::string trainingText(const TrainingRunSettings& s, const TrainingRunResult& r, double totalSeconds);
 
 double meanPsnr(const std::vector<ViewScore>& scores);

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/format.h"
+#include "core/settings_table.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 
@@ -306,6 +308,20 @@ RaySet generateRealLensRays(const EiLayout& L, const RealMla& mla, const RealLen
     *stats = st;
   }
   return rays;
+}
+
+std::optional<RealLensRayOptions> resolveRealLens(bool on, const std::optional<std::string>& model,
+                                                  const std::optional<double>& wavelengthNm) {
+  if (!on && (model || wavelengthNm))
+    throw InputError("", model ? "real_lens_ray" : "wavelength_nm",
+                     model ? "\"" + *model + "\"" : formatNumber(*wavelengthNm),
+                     "--real-lens as well (the pinhole model has no refraction)");
+  if (!on) return std::nullopt;
+  RealLensRayOptions ro;
+  if (model) ro.model = parseRealLensRayModel(*model, "real_lens_ray");
+  if (wavelengthNm) checkSettingRange(*findSetting("wavelength_nm"), *wavelengthNm, "", "wavelength_nm");
+  if (wavelengthNm) ro.wavelengthNm = *wavelengthNm;
+  return ro;
 }
 
 }  // namespace inim

@@ -27,6 +27,7 @@
 // leaves entirely through other lenslets (or is lost) falls back to the pinhole ray through
 // its lens centre; the stats count those.
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "core/geometry.h"
@@ -58,6 +59,12 @@ struct RealLensRayOptions {
   // traced directly.
   double tableStepMm = 0.02;
 };
+
+// The options as a run gives them (absent: not given): none without `on`; InputError naming
+// real_lens_ray or wavelength_nm when one is given without it (the pinhole model has no
+// refraction), for an unknown model, or for a wavelength outside the settings table's range.
+std::optional<RealLensRayOptions> resolveRealLens(bool on, const std::optional<std::string>& model,
+                                                  const std::optional<double>& wavelengthNm);
 
 struct RealLensRay {
   Point3d o{0.0};   // on z = 0

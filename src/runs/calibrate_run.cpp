@@ -394,4 +394,9 @@ std::string calibrationSummary(const CalibrateResult& r) {
   return t;
 }
 
+std::string poseResponseText(const PoseResponse& p) {
+  return formatText("pose %-7s %-7s %7lld px measured, %.1f s\n", p.pose.name.c_str(), p.pose.label.c_str(),
+                    (long long)p.pixels, p.seconds);
+}
+
 }  // namespace inim

@@ -87,6 +87,8 @@ std::vector<PatchOutcome> measureSet(const CalibrateResult& r, const FieldToDriv
                                      const PatchSet& set);
 
 // What `inim calibrate` prints: stages, models, verification, files.
+// "pose NAME LABEL N px measured, S s".
+std::string poseResponseText(const PoseResponse& p);
 std::string calibrationSummary(const CalibrateResult& r);
 
 }  // namespace inim

@@ -167,6 +167,16 @@ std::string summaryText(const ReferenceRunResult& r, const ReferenceSettings& re
   return buf;
 }
 
+std::string loadedText(const ReferenceRunResult& r) {
+  return "scene:       " + r.fieldPath + "; placement " + r.placement.describe() + "\n" + cameraText(r.camera);
+}
+
+std::string displayOutOfViewWarning(const ReferenceRunResult& r) {
+  if (r.displayInView) return "";
+  return "inim: warning: the display is out of the camera's view (" + r.camera.pose.describe() +
+         "); the reference is rendered anyway\n";
+}
+
 std::string cameraText(const CameraSetup& cs) {
   return "camera:      " + cs.desc.name + "; " + cs.camera->describe() + "\nimage:       " +
          std::to_string(cs.camera->width()) + " x " + std::to_string(cs.camera->height()) + " px, pitch " +

@@ -136,6 +136,10 @@ std::string summaryText(const ReferenceRunResult& r, const ReferenceSettings& re
 
 // The camera's two lines (model; image size, pitch and pose) as both commands print them.
 std::string cameraText(const CameraSetup& cs);
+// The scene and placement, then the camera (once loaded).
+std::string loadedText(const ReferenceRunResult& r);
+// A warning when the display is out of the camera's view; else "".
+std::string displayOutOfViewWarning(const ReferenceRunResult& r);
 // The exposure and the files written, as both commands print them.
 std::string writtenText(const ReferenceRunResult& r, const std::string& out);
 std::string writtenText(const ViewRunResult& r, const std::string& out);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "core/format.h"
 #include "core/error.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
@@ -46,6 +47,15 @@ CaptureRunResult runCapture(const CaptureRunSettings& s) {
   }
   r.capture = captureScene(*scene, cs, s.outDir);
   return r;
+}
+
+std::string captureText(const CaptureRunSettings& s, const CaptureRunResult& run) {
+  const CaptureResult& r = run.capture;
+  const Vec3d c = r.target.center();
+  return formatText("captured %s: %zu views of %d x %d px around (%.4g, %.4g, %.4g) mm at %.4g mm, %d spp, %.1f s\n"
+                    "wrote:    %s\n",
+                    run.scenePath.c_str(), r.views.size(), r.intrinsics.width, r.intrinsics.height, c.x, c.y, c.z,
+                    r.radiusMm, s.capture.spp, r.seconds, r.transformsPath.c_str());
 }
 
 }  // namespace inim

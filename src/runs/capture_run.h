@@ -29,5 +29,7 @@ struct CaptureRunResult {
 Box3d captureTargetForDisplay(const Field& scene, const std::string& scenePath, const std::string& displayPath);
 
 CaptureRunResult runCapture(const CaptureRunSettings& s);
+// What was captured and where transforms.json is.
+std::string captureText(const CaptureRunSettings& s, const CaptureRunResult& r);
 
 }  // namespace inim

@@ -70,18 +70,6 @@ void writeOutputs(const EiaRunSettings& s, EiaRunResult& r, const Field& field, 
   outputs.commit();
 }
 
-// printf into a string.
-template <class... Args>
-std::string format(const char* fmt, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, fmt, args...);
-  return buf;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 }  // namespace
 
 void checkQuerySampling(double vcpMm, int spp) {
@@ -127,7 +115,7 @@ EiaRunResult runEia(const EiaRunSettings& s, const std::function<void(const EiaR
   const RaySet realRays = s.realLens ? traceRealLensRays(r.display, r.layout, *s.realLens, &realStats, synthesis.progress)
                                      : RaySet{};
   if (s.realLens) synthesis.displayRays = &realRays, r.realLensSummary = summaryText(*s.realLens, realStats);
-  r.triadWavelengths = parseTriadWavelengths(r.display.panel, s.triadWavelengths);
+  r.triadWavelengths = parseTriadWavelengths(r.display.panel, s.triadWavelengths, s.triadWavelengthsKey);
   if (!s.fieldColorsPath.empty())
     field = loadFieldColors(s.fieldColorsPath, synthesis.spp, size_t(r.layout.numRays()) * size_t(synthesis.spp),
                             s.colorsEncoding);
@@ -147,11 +135,11 @@ std::string setupText(const EiaRunResult& r, double vcpMm) {
   const Display& d = r.display;
   const EiLayout& L = r.layout;
   std::string t =
-      L.isHex() ? format("display:     %s (%s layout, hex lattice: %d rows of %d EIs, %d px across the flats, g = %s "
+      L.isHex() ? formatText("display:     %s (%s layout, hex lattice: %d rows of %d EIs, %d px across the flats, g = %s "
                          "mm; panel %d x %d px)\n",
                          d.name.c_str(), layoutName(L.kind), L.eiRows, L.eiCols, d.eiWidthPx,
                          formatNumber(L.gapMm).c_str(), L.panelW, L.panelH)
-                : format("display:     %s (%s layout, %d x %d EIs of %d x %d px, g = %s mm; panel %d x %d px)\n",
+                : formatText("display:     %s (%s layout, %d x %d EIs of %d x %d px, g = %s mm; panel %d x %d px)\n",
                          d.name.c_str(), layoutName(L.kind), L.eiCols, L.eiRows, L.eiW, L.eiH,
                          formatNumber(L.gapMm).c_str(), L.panelW, L.panelH);
   t += "field:       " + r.fieldPath + " (" + fieldKindName(r.fieldKind) + ")\n";
@@ -171,17 +159,45 @@ std::string summaryText(const EiaRunResult& r, const EiaRunSettings& s) {
   }
   t += "calibration: " + r.calibration + "\n";
   const Image& eia = r.synthesis.eia;
-  t += format("wrote:       %s (%d x %d, %s), %s", s.out.c_str(), eia.width, eia.height,
+  t += formatText("wrote:       %s (%d x %d, %s), %s", s.out.c_str(), eia.width, eia.height,
               s.synthesis.aovs ? "R G B A Z" : "R G B", r.png.c_str());
   const PreviewResult& pv = r.preview;
   if (!s.preview.empty())
-    t += format(", %s (%d lenslets: %d real, %d virtual, %d on the MLA plane, %d missed; scene crosses the MLA at %d)",
+    t += formatText(", %s (%d lenslets: %d real, %d virtual, %d on the MLA plane, %d missed; scene crosses the MLA at %d)",
                 s.preview.c_str(), pv.lenslets, pv.real, pv.virtualHits, pv.onPlane, pv.missed, pv.crossingLenslets);
   const TriadWavelengths& tw = r.triadWavelengths;
   if (!s.sdf.empty())
-    t += format(", %s (%llu triad rays at %s/%s/%s nm)", s.sdf.c_str(), (unsigned long long)r.triads,
+    t += formatText(", %s (%llu triad rays at %s/%s/%s nm)", s.sdf.c_str(), (unsigned long long)r.triads,
                 formatNumber(tw.nm[0]).c_str(), formatNumber(tw.nm[1]).c_str(), formatNumber(tw.nm[2]).c_str());
   return t + "\n";
+}
+
+EiaRunSettings resolveEiaRun(EiaRunSettings e, const RunFile& run, const EiaGiven& g) {
+  if (int(g.scene.has_value()) + int(g.field.has_value()) + int(!e.fieldColorsPath.empty()) > 1)
+    throw InputError("", "--field", "more than one of --scene, --field, --field-colors", "one field source");
+  resolveSetting(e.fieldPath, run.scene, g.scene ? g.scene : g.field);
+  if (g.field) e.fieldKey = "field";
+  e.placement = run.placement;
+  e.placementOverride = g.placement;
+  SynthesisSettings& s = e.synthesis;
+  resolveSetting(s.vcpMm, run.vcpMm, g.vcpMm);
+  resolveSetting(s.spp, run.spp, g.spp);
+  checkQuerySampling(s.vcpMm, s.spp);
+  resolveSetting(s.seed, run.seed, g.seed);
+  if (const auto& text = chosenText(run.exposure, g.exposure)) try {
+      applyExposure(*text, s);
+    } catch (const InputError& err) {
+      throw g.exposure ? err : err.withFile(run.file);  // a run file's value is named as the file spells it
+    }
+  if (const auto& text = chosenText(run.gamut, g.gamut)) s.gamut = parseGamut(*text);
+  if (const auto& text = chosenText(run.whiteBalance, g.whiteBalance)) s.whiteBalanceD65 = parseWhiteBalanceD65(*text);
+  resolveSetting(e.calibrationPath, run.calibration, g.calibration);
+  if (!g.calibration && run.calibration) e.calibrationKey = "calibration (" + run.file + ")";
+  resolveSetting(e.displayPath, run.display, g.display.display);
+  e.layout = resolveLayout(&run, g.display.layout, g.display.viewingDistanceMm);
+  resolveSetting(e.triadWavelengths, run.triadWavelengths, g.triads);
+  if (!g.triads && run.triadWavelengths) e.triadWavelengthsKey = "triad_wavelengths (" + run.file + ")";
+  return e;
 }
 
 }  // namespace inim

@@ -14,6 +14,7 @@
 #include "field/ray_table.h"
 #include "field_files/field_factory.h"
 #include "mla_optics/real_lens_rays.h"
+#include "runs/run_file.h"
 #include "display/layout_override.h"
 #include "synthesis/eia_synthesis.h"
 #include "synthesis/preview.h"
@@ -37,6 +38,7 @@ struct EiaRunSettings {
   std::string calibrationKey = "calibration";  // the setting an unusable calibrationPath is reported as
   std::optional<RealLensRayOptions> realLens;  // query along the real-lens display rays
   std::string triadWavelengths = "panel";
+  std::string triadWavelengthsKey = "triad_wavelengths";  // the setting a bad value is reported as
   std::string out, png, preview, sdf;   // EXR; PNG ("": beside it); optional preview and SDF
 };
 
@@ -63,6 +65,21 @@ void checkQuerySampling(double vcpMm, int spp);
 void applyExposure(const std::string& text, SynthesisSettings& s);
 // A white balance setting: none or d65 (true). InputError naming `white_balance` otherwise.
 bool parseWhiteBalanceD65(const std::string& text);
+
+// The settings given one by one (the command line; absent: not given), over a run file's.
+struct EiaGiven {
+  std::optional<std::string> scene, field, triads, exposure, gamut, whiteBalance, calibration;
+  std::optional<double> vcpMm;
+  std::optional<int> spp;
+  std::optional<uint64_t> seed;
+  DisplayGiven display;
+  PlacementOverride placement;
+};
+// The one rule: `base` (the library's defaults, with the settings only the command line sets:
+// outputs, field colours, real-lens rays) < the run file < the settings given. A setting is
+// named in errors as the file spells it when its value came from the run file; the field's own
+// default placement (a trained model's) is below the run file's.
+EiaRunSettings resolveEiaRun(EiaRunSettings base, const RunFile& run, const EiaGiven& given);
 
 // `loaded` (optional) is called when everything is loaded, before the synthesis.
 EiaRunResult runEia(const EiaRunSettings& s, const std::function<void(const EiaRunResult&)>& loaded = {});

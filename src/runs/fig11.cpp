@@ -473,4 +473,8 @@ std::string fig11WrittenText(const Fig11Settings& s) {
          (s.budget ? ",budget.json,budget.csv,budget.png" : "") + "}\n";
 }
 
+std::string fig11BudgetText(const PoseBudget& b) {
+  return formatText("  budget %-7s %s\n", b.pose.c_str(), budgetLine(b).c_str());
+}
+
 }  // namespace inim

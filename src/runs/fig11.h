@@ -113,6 +113,8 @@ Fig11Result runFig11(const Fig11Settings& settings, const Fig11Observer& observe
 std::string fig11EiaText(const Fig11Result& r);
 std::string fig11ViewText(const Fig11View& v);
 std::string fig11ViewWarnings(const Fig11View& v);
+// "  budget POSE <rungs>".
+std::string fig11BudgetText(const PoseBudget& b);
 std::string fig11WrittenText(const Fig11Settings& s);
 
 }  // namespace inim

@@ -25,5 +25,7 @@ struct QueryRunResult {
 
 // InputError naming `out` for another extension, before any work.
 QueryRunResult runQuery(const QueryRunSettings& s);
+// "queried FIELD (kind) along N rays of TABLE: OUT in S s".
+std::string queryText(const QueryRunSettings& s, const QueryRunResult& r, double seconds);
 
 }  // namespace inim

@@ -190,4 +190,10 @@ RayExportResult exportRays(const RayExportSettings& s) {
   return r;
 }
 
+std::string exportText(const RayExportSettings& s, const RayExportResult& r, double seconds) {
+  return formatText("wrote %llu rays to %s: %s, in %.2f s\n", (unsigned long long)r.count, s.out.c_str(),
+                    r.what.c_str(), seconds) +
+         r.notes;
+}
+
 }  // namespace inim

@@ -42,5 +42,7 @@ struct RayExportResult {
 };
 
 RayExportResult exportRays(const RayExportSettings& s);
+// "wrote N rays to OUT: what, in S s" and the notes.
+std::string exportText(const RayExportSettings& s, const RayExportResult& r, double seconds);
 
 }  // namespace inim

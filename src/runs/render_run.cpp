@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/format.h"
 #include "core/error.h"
 #include "core/output_file.h"
 #include "field_files/field_factory.h"
@@ -42,6 +43,12 @@ RenderRunResult runRender(const RenderRunSettings& s) {
   writeImage(encodeSRGB(r.render.image), outputs.add(r.png));
   outputs.commit();
   return r;
+}
+
+std::string renderText(const RenderRunSettings& s, const RenderRunResult& r) {
+  return formatText("rendered %s: %dx%d, %d spp, %.2f s, %.2f Mrays/s (camera rays)\n  wrote %s\n  wrote %s\n",
+                    r.fieldPath.c_str(), s.camera.width, s.camera.height, s.render.spp, r.render.seconds,
+                    r.render.raysTraced / r.render.seconds * 1e-6, s.out.c_str(), r.png.c_str());
 }
 
 }  // namespace inim

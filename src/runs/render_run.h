@@ -27,6 +27,8 @@ struct RenderRunResult {
 };
 
 RenderRunResult runRender(const RenderRunSettings& s);
+// What was rendered, how fast, and the files written.
+std::string renderText(const RenderRunSettings& s, const RenderRunResult& r);
 
 // "x,y,z" -> a camera position or direction; InputError naming `key` (eye, look_at, up)
 // unless it is three finite numbers.

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "core/json_config.h"
+#include "core/settings_table.h"
 
 namespace inim {
 
@@ -92,6 +93,17 @@ RunFile loadRunFile(const std::string& path) {
   }
   o.rejectUnknown();
   return r;
+}
+
+LayoutOverride resolveLayout(const RunFile* run, const std::optional<std::string>& layout,
+                             const std::optional<double>& viewingDistanceMm) {
+  LayoutOverride lo;
+  if (layout) lo.layout = layout, lo.layoutKey = settingFlag("layout");
+  else if (run && run->layout) lo.layout = run->layout, lo.layoutKey = "layout (" + run->file + ")";
+  if (viewingDistanceMm) lo.viewingDistanceMm = viewingDistanceMm, lo.distanceKey = settingFlag("viewing_distance_mm");
+  else if (run && run->viewingDistanceMm)
+    lo.viewingDistanceMm = run->viewingDistanceMm, lo.distanceKey = "viewing_distance_mm (" + run->file + ")";
+  return lo;
 }
 
 }  // namespace inim

@@ -15,6 +15,7 @@
 #include <string>
 #include <type_traits>
 
+#include "display/layout_override.h"
 #include "field/placement.h"
 
 namespace inim {
@@ -42,6 +43,16 @@ void resolveSetting(T& setting, const std::optional<std::type_identity_t<T>>& fr
   if (given) setting = *given;
   else if (fromRunFile) setting = *fromRunFile;
 }
+// The display settings given one by one (absent: not given).
+struct DisplayGiven {
+  std::optional<std::string> display, layout;
+  std::optional<double> viewingDistanceMm;
+};
+
+// The EI layout settings: the command line's (absent: not given) over the run file's (`run` may
+// be null), each named in messages by where it came from: its flag, or the run file's key.
+LayoutOverride resolveLayout(const RunFile* run, const std::optional<std::string>& layout,
+                             const std::optional<double>& viewingDistanceMm);
 // For a setting given as text and parsed by the library (exposure, gamut, ...): the text that
 // wins, or none (the default stands).
 inline const std::optional<std::string>& chosenText(const std::optional<std::string>& fromRunFile,

@@ -59,4 +59,26 @@ TriadFormResult formTriads(const TriadFormSettings& s) {
   return r;
 }
 
+std::string exportText(const TriadExportSettings& s, const TriadExportResult& r, double seconds) {
+  const TriadWavelengths& w = r.wavelengths;
+  return formatText("wrote %llu triad rays (%llu display rays; %.6g/%.6g/%.6g nm, %s) to %s in %.2f s\n",
+                    (unsigned long long)r.triads, (unsigned long long)r.displayRays, w.nm[0], w.nm[1], w.nm[2],
+                    w.source.c_str(), s.out.c_str(), seconds);
+}
+
+std::string formText(const TriadFormSettings& s, const TriadFormResult& r, double seconds) {
+  return formatText("formed %s (%d x %d) from %s: %llu rays binned, %llu missed the detector, %llu of unknown "
+                    "wavelength, in %.2f s\n",
+                    s.out.c_str(), r.width, r.height, s.sdfPath.c_str(), (unsigned long long)r.binned,
+                    (unsigned long long)r.missed, (unsigned long long)r.unknownWavelength, seconds);
+}
+
+std::string formWarning(const TriadFormResult& r) {
+  if (!r.unknownWavelength) return "";
+  return formatText("inim: warning: %llu rays have none of the triad wavelengths %.6g/%.6g/%.6g nm (within 0.5 nm); "
+                    "check --triad-wavelengths\n",
+                    (unsigned long long)r.unknownWavelength, r.wavelengths.nm[0], r.wavelengths.nm[1],
+                    r.wavelengths.nm[2]);
+}
+
 }  // namespace inim

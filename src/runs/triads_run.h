@@ -26,6 +26,7 @@ struct TriadExportResult {
 };
 
 TriadExportResult exportTriads(const TriadExportSettings& s);
+std::string exportText(const TriadExportSettings& s, const TriadExportResult& r, double seconds);
 
 struct TriadFormSettings {
   std::string displayPath;  // "": the paper's prototype
@@ -43,5 +44,8 @@ struct TriadFormResult {
 };
 
 TriadFormResult formTriads(const TriadFormSettings& s);
+std::string formText(const TriadFormSettings& s, const TriadFormResult& r, double seconds);
+// A warning line when some rays carry none of the triad wavelengths; else "".
+std::string formWarning(const TriadFormResult& r);
 
 }  // namespace inim

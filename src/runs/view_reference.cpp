@@ -245,7 +245,13 @@ std::string comparisonText(const ViewReferenceResult& r) {
     text += buf;
   }
   if (r.budget) text += "budget:      " + budgetLine(*r.budget) + "\n";
-  return text;
+  text += "exposure:    " + formatNumber(r.exposure) + " (both images)\nwrote:       ";
+  for (size_t i = 0; i < r.written.size(); ++i) text += (i ? ", " : "") + r.written[i];
+  return text + "\n";
+}
+
+std::string comparisonWarnings(const ViewReferenceResult& r) {
+  return outOfViewWarning(r.view) + (r.hasMetrics ? "" : "inim: warning: no pixel sees the display; no metrics\n");
 }
 
 }  // namespace inim

@@ -64,5 +64,7 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
 // against the view and the band-limited reference, the budget (no metrics when no pixel sees
 // the display).
 std::string comparisonText(const ViewReferenceResult& r);
+// The view's out-of-view warning and, when no pixel sees the display, that there are no metrics.
+std::string comparisonWarnings(const ViewReferenceResult& r);
 
 }  // namespace inim

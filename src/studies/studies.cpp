@@ -1,5 +1,6 @@
 #include "studies/studies.h"
 
+#include "core/format.h"
 #include "core/error.h"
 
 namespace inim {
@@ -39,6 +40,15 @@ StudyReport runStudy(const std::string& name, const StudyOptions& o) {
   std::string names;
   for (const auto& n : studyNames()) names += (names.empty() ? "" : ", ") + n;
   throw InputError("", "study", name, "one of " + names);
+}
+
+std::string studyReportText(const StudyReport& r) {
+  std::string t;
+  for (const auto& v : r.values)
+    t += formatText("%-55s measured %9.3f  predicted %9.3f  (tol %2.0f%%)  %s\n", v.name.c_str(), v.measured,
+                    v.predicted, 100.0 * v.tolerance, v.pass ? "ok" : "FAIL");
+  for (const auto& f : r.files) t += "wrote " + f + "\n";
+  return t + r.study + ": " + (r.pass ? "PASS" : "FAIL") + "\n";
 }
 
 }  // namespace inim

@@ -27,6 +27,10 @@ struct StudyValue {
   Check check = Check::Relative;  // AtLeast: pass when measured >= predicted; AtMost: <=
 };
 
+struct StudyReport;
+// Each value against its prediction, the files written and the verdict.
+std::string studyReportText(const StudyReport& r);
+
 struct StudyReport {
   std::string study;                // e.g. "flip-onset"
   std::vector<StudyValue> values;   // the verdict's quantities

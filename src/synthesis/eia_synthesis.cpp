@@ -25,7 +25,6 @@ namespace inim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 std::string num(double v, const char* fmt = "%.4g") {
   char buf[48];
@@ -316,7 +315,7 @@ SynthesisResult synthesizeEia(const EiLayout& L, const Panel& panel, const Field
 
   st.exposureUsed = chooseExposure(s, res.drive, hitFlag, st.hitRays);
   exposeAndMapGamut(L, color, s, res);
-  st.querySeconds = std::chrono::duration<double>(Clock::now() - tq).count();
+  st.querySeconds = secondsSince(tq);
   addSceneWarnings(s.vcpMm, st);
   st.seconds = secondsSince(t0);
   return res;

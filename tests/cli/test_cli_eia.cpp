@@ -228,8 +228,8 @@ TEST(CliEia, BadInputLeavesNoOutput) {
                  {"--viewing-distance-mm", "-5"}, {out, png, sdf, pv});
   expectBadInput("eia --display " + smallDisplay() + scene + " --layout diagonal" + outs, {"--layout", "diagonal"},
                  {out, png, sdf, pv});
-  // A singular placement.
-  expectBadInput("eia --display " + smallDisplay() + scene + " --scale 1,0,1" + outs, {"--scale", "1, 0, 1"},
+  // A singular placement: a zero scale is outside the scale's range.
+  expectBadInput("eia --display " + smallDisplay() + scene + " --scale 1,0,1" + outs, {"--scale", "1,0,1", "[1e-12, 1e+15]"},
                  {out, png, sdf, pv});
   std::string run0 = path("run_singular.json");
   writeText(run0, R"({"placement": {"scale": 0}})");

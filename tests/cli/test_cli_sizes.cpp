@@ -59,20 +59,21 @@ TEST(CliSizes, BillionEisAreRefusedBeforeAnyPerEiArray) {
 }
 
 TEST(CliSizes, HexDisplayWithSixteenMillionEisNamesTheMemoryLimit) {
-  // 3990 x 4000 hex EIs of 25 px on a 100000 x 100000 px panel: the EIA fits, but its pixel map
-  // (12 bytes a pixel, ~100 GB) does not fit the budget.
-  std::string json = smallDisplayJson(3990, 4000, 25, 3.0, 2.5, 100000, 100000);
+  // 1300 x 1300 hex EIs of 25 px on a 32768 x 32768 px panel (the largest the settings table
+  // allows): the EIA fits, but its pixel map (12 bytes a pixel, ~12 GB) does not fit a 4 GiB limit.
+  std::string json = smallDisplayJson(1300, 1300, 25, 3.0, 2.5, 32768, 32768);
   json = replaced(json, "\"material\": \"PMMA\"", "\"material\": \"PMMA\", \"lattice\": \"hex\"");
   const std::string d = writeDisplay("hex16m.json", json);
-  expectBadInput("display info " + d, {"hex16m.json", "ei_count", "GiB", "--max-memory"}, {});
+  expectBadInput("display info --max-memory 4G " + d, {"hex16m.json", "ei_count", "GiB", "--max-memory"}, {});
 }
 
 TEST(CliSizes, RenderSizesBeyondTheBudgetAreRefused) {
   const std::string out = path("render.exr"), scene = data(kScene);
   const std::string base = "render --scene " + scene + " --out " + out;
-  expectBadInput(base + " --width 65536 --height 65536", {"--width/--height", "65536 x 65536", "--max-memory"},
+  expectBadInput(base + " --width 65536 --height 8", {"--width", "65536", "[1, 32768]"}, {out, path("render.png")});
+  expectBadInput(base + " --width 32768 --height 32768", {"--width/--height", "32768 x 32768", "--max-memory"},
                  {out, path("render.png")});
-  expectBadInput(base + " --width 8 --height 8 --spp 2147483647", {"--spp", "2147483647"}, {out, path("render.png")});
+  expectBadInput(base + " --width 8 --height 8 --spp 2147483647", {"--spp", "2.14748e+09"}, {out, path("render.png")});
   // The limit is the user's: a 64 x 64 image of 5 floats (80 KiB) is refused under 64K, before
   // or after the command name.
   expectBadInput("--max-memory 64K " + base + " --width 64 --height 64 --spp 1", {"--width/--height", "64 KiB"},
@@ -87,8 +88,9 @@ TEST(CliSizes, RenderSizesBeyondTheBudgetAreRefused) {
 TEST(CliSizes, ViewWidthBeyondTheBudgetIsRefused) {
   const std::string eia = path("eia.exr"), out = path("view.exr");
   writeImage(Image(3840, 1644, {"R", "G", "B"}), eia);
-  expectBadInput("view --eia " + eia + " --width 100000 --out " + out, {"--width/--height", "100000", "--max-memory"},
-                 {out});
+  expectBadInput("view --eia " + eia + " --width 100000 --out " + out, {"--width", "100000", "[1, 32768]"}, {out});
+  expectBadInput("view --eia " + eia + " --width 32768 --max-memory 1G --out " + out,
+                 {"--width/--height", "32768", "--max-memory"}, {out});
 }
 
 TEST(CliSizes, NpyShapeBeyondTheFileOrTheBudgetIsRefused) {

@@ -159,8 +159,11 @@ TEST(CliView, ReferenceWritesTheComparisonAndTheBudget) {
   // The reference's own sample count is named when its ray buffer is over the memory budget.
   const std::string bigReference = "view --display " + smallDisplay() + " --eia " + eia + cameraArgs() +
                                    " --reference --scene " + data("scenes/test/point-sphere.json") +
-                                   " --reference-spp 100000000 --eia-exposure 0.5 --out " + out;
-  expectBadInput(bigReference, {"--reference-spp", "100000000", "memory"}, {out, files[1], files[3]});
+                                   " --eia-exposure 0.5 --max-memory 64M --out " + out;
+  expectBadInput(bigReference + " --reference-spp 1048576", {"--reference-spp", "1048576", "memory"},
+                 {out, files[1], files[3]});
+  expectBadInput(bigReference + " --reference-spp 100000000", {"--reference-spp", "1e+08", "[1, 1048576]"},
+                 {out, files[1], files[3]});
   const CliResult r = runInim(base + "--out " + out + " --eia-exposure 0.5 --budget-rungs ideal,+colour_chain");
   ASSERT_EQ(r.status, 0) << r.output;
   for (const std::string& f : files) EXPECT_TRUE(fs::exists(f)) << f;
