@@ -1,6 +1,7 @@
 // libFuzzer target: a request body of the placement page (src/place): PUT /api/state through
 // applyStatePatch, then, as POST /api/write and /api/predict, the job body's keys and the output
-// name (fuzz/README.md). Bodies are held in memory, as the server holds them.
+// name, and for a refused body the error answer the server builds from its message
+// (fuzz/README.md). Bodies are held in memory, as the server holds them.
 #include <string>
 
 #include "core/json_config.h"
@@ -32,11 +33,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const inim::PlaceState t = inim::applyStatePatch(s, j, {"/displays/a.json", "/displays/b.json"});
     (void)inim::runFileJson(t, "/scenes/s.json").dump();
     (void)inim::placeStateJson(t).dump();
-  } catch (const inim::InputError&) {
+  } catch (const inim::InputError& e) {
+    (void)inim::jsonText(inim::Json{{"error", e.what()}});  // the 400 answer, valid whatever the bytes
   }
   try {
     checkJobBody(inim::parseJsonText(body, "request body"));
-  } catch (const inim::InputError&) {
+  } catch (const inim::InputError& e) {
+    (void)inim::jsonText(inim::Json{{"error", e.what()}});
   }
   return 0;
 }

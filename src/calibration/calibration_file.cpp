@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/input_file.h"
 #include "core/error.h"
 #include "core/file_kinds.h"
 #include "core/format.h"
@@ -27,6 +28,7 @@ std::shared_ptr<const ColourModel> loadCalibration(const std::string& path, cons
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path, std::ios::binary))
     throw InputError(path, key, quoted, "a readable calibration file (.cube or .clf)");
+  checkInputFile(path);
   if (kind == FileKind::Cube) return std::make_shared<const Lut3d>(readCube(path));
   return std::make_shared<const ClfModel>(readClf(path));
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/input_file.h"
 #include "core/error.h"
 
 namespace inim {
@@ -38,6 +39,7 @@ bool parseNumber(std::string_view token, double& value) {
 }
 
 std::string readTextFile(const std::string& path, const std::string& expected) {
+  checkInputFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "", "a readable " + expected);
   std::ostringstream text;

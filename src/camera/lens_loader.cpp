@@ -8,6 +8,7 @@
 #include <regex>
 #include <sstream>
 
+#include "core/input_file.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/output_file.h"
@@ -78,6 +79,7 @@ LensSystem loadLens(const std::string& pathOrName, const LensLoadOptions& opt) {
     Json j = readJsonFile(path);
     return parseLensJson(JsonObject(j, path, ""), opt);
   }
+  checkInputFile(path);
   std::ifstream in(path);
   if (!in) throw InputError(path, "", "", "a readable lens file (cannot open it)");
   std::stringstream ss;
@@ -119,8 +121,10 @@ LensSystem parsePbrtLens(const std::string& text, const std::string& file, const
     while (row >> tok) {
       char* end = nullptr;
       double x = std::strtod(tok.c_str(), &end);
-      if (end == tok.c_str() || *end != '\0' || !std::isfinite(x))
+      if (end != tok.data() + tok.size() || tok.empty() || !std::isfinite(x)) {  // "29\0.475" is not 29
+        std::replace(tok.begin(), tok.end(), '\0', '?');
         throw InputError(file, where, "\"" + tok + "\"", "a finite number (row: radius thickness index aperture)");
+      }
       v.push_back(x);
     }
     if (v.size() != 4)

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/input_file.h"
 #include "colour_chain/colour_chain.h"
 #include "core/error.h"
 #include "core/format.h"
@@ -101,6 +102,7 @@ PatchSet holdOutOutOfGamut(const PanelColor& panel, double exposure, int count, 
 }
 
 PatchSet readPatchCsv(const std::string& path) {
+  checkInputFile(path);
   std::ifstream in(path);
   if (!in) throw InputError(path, "file", "\"" + path + "\"", "a readable patch CSV");
   PatchSet set{path, false, {}};

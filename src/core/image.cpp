@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/input_file.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/quiet_stderr.h"
@@ -97,6 +98,7 @@ void writeImage(const Image& img, const std::string& path, const ImageNumbers& n
 
 std::optional<double> readImageNumber(const std::string& path, const std::string& name) {
   LibraryStderrSilenced quiet(path);
+  checkInputFile(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw InputError(path, "", "", "a readable image (" + oneLine(OIIO::geterror()) + ")");
   const OIIO::ParamValue* p = in->spec().find_attribute(name);
@@ -108,6 +110,7 @@ std::optional<double> readImageNumber(const std::string& path, const std::string
 
 Image readImage(const std::string& path, bool rejectNonFinite) {
   LibraryStderrSilenced quiet(path);
+  checkInputFile(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw InputError(path, "", "", "a readable image (" + oneLine(OIIO::geterror()) + ")");
   const OIIO::ImageSpec& spec = in->spec();

@@ -8,8 +8,14 @@
 #include <iterator>
 #include <limits>
 #include <optional>
+#include <unordered_map>
+#include <vector>
 
+#include "core/input_file.h"
 #include "core/error.h"
+#include "core/format.h"
+#include "core/interrupt.h"
+#include "core/settings_table.h"
 
 namespace inim {
 
@@ -22,6 +28,14 @@ std::string lineColumn(const std::string& text, size_t offset) {
   const size_t lineStart = offset == 0 ? std::string::npos : text.rfind('\n', offset - 1);
   const size_t column = lineStart == std::string::npos ? offset + 1 : offset - lineStart;
   return "line " + std::to_string(lines + 1) + ", column " + std::to_string(column);
+}
+
+// A key or value as messages quote it: whole up to 60 bytes, else its start and its length.
+std::string messageText(const std::string& text) {
+  if (text.size() <= 60) return text;
+  size_t cut = 48;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // whole UTF-8 characters
+  return text.substr(0, cut) + "... (" + std::to_string(text.size()) + " bytes)";
 }
 
 // The library's own DOM builder, with the nesting counted as it goes (its parser is
@@ -39,9 +53,16 @@ class CheckedSax {
   bool number_float(Json::number_float_t v, const std::string& s) { return dom_.number_float(v, s); }
   bool string(std::string& v) { return dom_.string(v); }
   bool binary(Json::binary_t& v) { return dom_.binary(v); }
-  bool key(std::string& k) { return dom_.key(k); }
-  bool start_object(std::size_t n) { return enter() && dom_.start_object(n); }
-  bool end_object() { return --depth_, dom_.end_object(); }
+  bool key(std::string& k) {
+    const size_t line = lineOfKey(k);
+    if (auto [it, added] = keys_.back().emplace(k, line); !added)
+      throw InputError(name_, messageText(k), "given twice (lines " + std::to_string(it->second) + " and " +
+                                                  std::to_string(line) + ")",
+                       "each key once in an object (a later one would silently replace the first)");
+    return dom_.key(k);
+  }
+  bool start_object(std::size_t n) { return enter() && (keys_.emplace_back(), dom_.start_object(n)); }
+  bool end_object() { return --depth_, keys_.pop_back(), dom_.end_object(); }
   bool start_array(std::size_t n) { return enter() && dom_.start_array(n); }
   bool end_array() { return --depth_, dom_.end_array(); }
 
@@ -58,12 +79,28 @@ class CheckedSax {
 
  private:
   bool enter() {
+    throwIfInterrupted();  // a file of a million objects still stops at once on Ctrl-C
     if (++depth_ > kMaxJsonDepth)
       throw InputError(name_, "", "nesting deeper than " + std::to_string(kMaxJsonDepth) + " levels",
                        "JSON nested at most " + std::to_string(kMaxJsonDepth) + " levels deep");
     return true;
   }
+  // The line of key `k`: the keys come in the order of the text, so each is searched for from
+  // the previous one on (as written: "k" then ':'); 0 when it is spelt with escapes.
+  size_t lineOfKey(const std::string& k) {
+    const std::string quoted = Json(k).dump();
+    for (size_t at = text_.find(quoted, cursor_); at != std::string::npos; at = text_.find(quoted, at + 1)) {
+      const size_t after = text_.find_first_not_of(" \t\r\n", at + quoted.size());
+      if (after == std::string::npos || text_[after] != ':') continue;
+      line_ += size_t(std::count(text_.begin() + std::ptrdiff_t(cursor_), text_.begin() + std::ptrdiff_t(after), '\n'));
+      cursor_ = after;  // past this key: the next is searched for after it
+      return line_;
+    }
+    return 0;
+  }
   nlohmann::detail::json_sax_dom_parser<Json> dom_;
+  std::vector<std::unordered_map<std::string, size_t>> keys_;  // per open object: key -> line
+  size_t cursor_ = 0, line_ = 1;
   const std::string& text_;
   const std::string& name_;
   int depth_ = 0;
@@ -81,6 +118,7 @@ Json parseJsonText(const std::string& text, const std::string& name) {
 }
 
 Json readJsonFile(const std::string& path) {
+  checkInputFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "", "a readable JSON file (cannot open it)");
   const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -96,14 +134,16 @@ static void appendValueText(const Json& j, std::string& out, size_t limit) {
     bool first = true;
     for (auto it = j.begin(); it != j.end() && out.size() <= limit; ++it, first = false) {
       if (!first) out += ',';
-      if (j.is_object()) out += Json(it.key()).dump() + ':';
+      if (j.is_object()) out += jsonText(Json(it.key())) + ':';
       appendValueText(it.value(), out, limit);
     }
     out += j.is_array() ? ']' : '}';
   } else {
-    out += j.dump();
+    out += jsonText(j);
   }
 }
+
+std::string jsonText(const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); }
 
 std::string jsonValueText(const Json& j) {
   std::string s;
@@ -133,27 +173,10 @@ bool JsonObject::has(const std::string& key) const {
   return true;
 }
 
-// Levenshtein distance, for "did you mean" hints on misspelt keys.
-static size_t editDistance(const std::string& a, const std::string& b) {
-  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j)
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-
 std::string JsonObject::closestKey(const std::string& key) const {
-  std::string best;
-  size_t bestD = 3;  // up to 2 edits
-  for (auto it = j_.begin(); it != j_.end(); ++it) {
-    size_t d = editDistance(it.key(), key);
-    if (d < bestD) bestD = d, best = it.key();
-  }
-  return best;
+  std::vector<std::string> present;
+  for (auto it = j_.begin(); it != j_.end(); ++it) present.push_back(it.key());
+  return closestName(key, present);
 }
 
 const Json& JsonObject::get(const std::string& key) const {
@@ -170,9 +193,19 @@ const Json& JsonObject::get(const std::string& key) const {
 
 const Json& JsonObject::raw(const std::string& key) const { return get(key); }
 
+// Every number a file gives must lie in its key's range (core/settings_table.h); an array's
+// element is reported with the whole array, as the file has it.
+void JsonObject::checkRange(const std::string& key, double v, const Json* array) const {
+  const SettingInfo* info = findSetting(key, kFileScope);
+  if (!info || std::isnan(info->lo) || (v >= info->lo && v <= info->hi)) return;
+  if (!array) checkSettingRange(*info, v, file_, keyPath(key));
+  fail(key, jsonValueText(*array), rangeText(*info) + " for each element");
+}
+
 double JsonObject::number(const std::string& key) const {
   const Json& v = get(key);
   if (!v.is_number() || !std::isfinite(v.get<double>())) fail(key, jsonValueText(v), "a finite number");
+  checkRange(key, v.get<double>());
   return v.get<double>();
 }
 double JsonObject::number(const std::string& key, double fallback) const {
@@ -227,6 +260,7 @@ int JsonObject::integer(const std::string& key, int lo, int hi) const {
   const Json& v = get(key);
   const std::optional<int> n = wholeNumber(v, lo, hi);
   if (!n) fail(key, jsonValueText(v), wholeNumbersText(lo, hi, false));
+  checkRange(key, *n);
   return *n;
 }
 std::vector<int> JsonObject::integers(const std::string& key, int lo, int hi) const {
@@ -236,6 +270,7 @@ std::vector<int> JsonObject::integers(const std::string& key, int lo, int hi) co
   for (const auto& e : v) {
     const std::optional<int> n = wholeNumber(e, lo, hi);
     if (!n) fail(key, jsonValueText(v), "an array of " + wholeNumbersText(lo, hi, true));
+    checkRange(key, *n, &v);
     r.push_back(*n);
   }
   return r;
@@ -260,7 +295,7 @@ std::string JsonObject::choice(const std::string& key, const std::vector<std::st
     if (a == s) return s;
   std::string list;
   for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-  fail(key, "\"" + s + "\"", "one of: " + list);
+  fail(key, "\"" + messageText(s) + "\"", "one of: " + list);
 }
 std::string JsonObject::choice(const std::string& key, const std::vector<std::string>& allowed,
                                const std::string& fallback) const {
@@ -274,6 +309,7 @@ Vec3d JsonObject::vec3(const std::string& key) const {
     if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
       fail(key, jsonValueText(v), "an array of 3 finite numbers");
     r[i] = v[i].get<double>();
+    checkRange(key, r[i], &v);
   }
   return r;
 }
@@ -286,6 +322,7 @@ std::vector<double> JsonObject::numbers(const std::string& key) const {
   std::vector<double> r;
   for (const auto& e : v) {
     if (!e.is_number() || !std::isfinite(e.get<double>())) fail(key, jsonValueText(v), "an array of finite numbers");
+    checkRange(key, e.get<double>(), &v);
     r.push_back(e.get<double>());
   }
   return r;
@@ -318,7 +355,7 @@ void JsonObject::rejectUnknown() const {
     if (!it.key().empty() && it.key()[0] == '_') continue;  // "_comment", "_source": notes
     std::string known;
     for (const auto& k : asked_) known += (known.empty() ? "" : ", ") + k;
-    throw InputError(file_, keyPath(it.key()), jsonValueText(it.value()),
+    throw InputError(file_, keyPath(messageText(it.key())), jsonValueText(it.value()),
                      "a known key (unknown key; known keys: " + (known.empty() ? "none" : known) +
                          ")");
   }

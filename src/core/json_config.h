@@ -78,12 +78,17 @@ class JsonObject {
 
  private:
   const Json& get(const std::string& key) const;
+  void checkRange(const std::string& key, double v, const Json* array = nullptr) const;
   std::string closestKey(const std::string& key) const;  // a present key within 2 edits
   const Json& j_;
   std::string file_, path_;
   mutable std::set<std::string> used_;   // keys present and read
   mutable std::set<std::string> asked_;  // keys the reader knows, present or not
 };
+
+// Compact JSON text that is valid UTF-8 whatever the strings hold (invalid bytes become
+// U+FFFD): answers that echo a client's bytes never fail to print.
+std::string jsonText(const Json& j);
 
 // Compact, truncated to 60 characters, for messages; bounded work and stack at any depth.
 std::string jsonValueText(const Json& j);

@@ -5,6 +5,7 @@
 #include <regex>
 #include <stdexcept>
 
+#include "core/input_file.h"
 #include "core/error.h"
 #include "core/size_budget.h"
 
@@ -76,6 +77,7 @@ void writeNpy(const std::string& path, const NpyArray& a) {
 }
 
 NpyArray readNpy(const std::string& path) {
+  checkInputFile(path);
   std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(path, "file", "\"" + path + "\"", "a readable .npy file");
   char magic[6] = {};

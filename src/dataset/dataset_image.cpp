@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/input_file.h"
 #include "core/error.h"
 #include "core/quiet_stderr.h"
 #include "core/size_budget.h"
@@ -20,6 +21,7 @@ namespace {
 std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
+  checkInputFile(path);
   auto in = OIIO::ImageInput::open(path, &config);
   if (!in) throw InputError(path, "", "", "a readable image (" + OIIO::geterror() + ")");
   return in;

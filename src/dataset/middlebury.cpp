@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/input_file.h"
 #include "core/error.h"
 
 namespace inim {
@@ -19,6 +20,7 @@ glm::dmat4 openCvWorldToCameraToGl(const glm::dmat3& R, const glm::dvec3& t) {
 }
 
 DatasetManifest readMiddleburyPar(const std::string& path) {
+  checkInputFile(path);
   std::ifstream in(path);
   if (!in) throw InputError(path, "", "", "a readable Middlebury *_par.txt file");
   DatasetManifest man;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/ray_check.h"
 #include "core/format.h"
 #include "core/image.h"
 #include "core/npy.h"
@@ -83,6 +84,22 @@ void writeRayTable(const std::string& path, const RayTable& t) {
   writeImage(img, path);
 }
 
+namespace {
+
+// The door every query ray passes (core/ray_check.h), and an interval from a finite near >= 0;
+// the EXR's padding rows (all zero, far = -1: no query) pass as they are.
+void checkQueryRay(const FieldRay& r, const std::string& path, int64_t row) {
+  const bool padding = r.o == Point3(0.0f) && r.d == Vec3(0.0f) && r.tNear == 0.0f && r.tFar == -1.0f;
+  if (padding) return;
+  const std::string where = "row " + std::to_string(row);
+  checkRay(Vec3d(r.o), Vec3d(r.d), path, where);
+  if (!(r.tNear >= 0.0f && std::isfinite(r.tNear)) || std::isnan(r.tFar))  // far < near: no query; far = inf
+    throw InputError(path, where, formatText("near %.9g, far %.9g", r.tNear, r.tFar),
+                     "a finite near >= 0 and a far that is a number (infinity allowed; below near: no query)");
+}
+
+}  // namespace
+
 RayTable readRayTable(const std::string& path, int spp) {
   std::vector<std::string> ch;
   NpyArray a = readTable(path, ch);
@@ -103,6 +120,7 @@ RayTable readRayTable(const std::string& path, int spp) {
     r.o = Point3(a.at(i, col[0]), a.at(i, col[1]), a.at(i, col[2]));
     r.d = Vec3(a.at(i, col[3]), a.at(i, col[4]), a.at(i, col[5]));
     r.tNear = a.at(i, col[6]), r.tFar = a.at(i, col[7]);
+    checkQueryRay(r, path, i);
     r.id = uint64_t(i) / uint64_t(spp);
     r.sample = uint32_t(uint64_t(i) % uint64_t(spp));
   }

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <vector>
 
+#include "core/input_file.h"
 #include "core/error.h"
 
 namespace inim {
@@ -94,6 +95,7 @@ void saveVoxelGrid(const VoxelGrid& g, const std::string& path) {
 }
 
 VoxelGrid loadVoxelGrid(const std::string& path) {
+  checkInputFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "path", path, "an existing, readable model file");
   in.seekg(0, std::ios::end);

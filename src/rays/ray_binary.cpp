@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/input_file.h"
 #include "core/error.h"
 #include "core/size_budget.h"
 
@@ -86,21 +87,13 @@ void writeRayBinary(const std::string& path, const RaySet& rays, const RayBinary
 namespace {
 
 // A NaN or infinite origin or direction would pass through every later stage into the outputs.
-void rejectNonFiniteRays(const RaySet& rays, const std::string& path) {
-  const char* names[6] = {"ox", "oy", "oz", "dx", "dy", "dz"};
-  const std::vector<float>* columns[6] = {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz};
-  for (int c = 0; c < 6; ++c)
-    for (size_t i = 0; i < columns[c]->size(); ++i)
-      if (!std::isfinite((*columns[c])[i]))
-        throw InputError(path, "ray " + std::to_string(i) + " " + names[c], std::isnan((*columns[c])[i]) ? "NaN" : "Inf",
-                         "finite ray origins and directions");
-}
 
 }  // namespace
 
 RaySet readRayBinary(const std::string& path, RayBinaryInfo* info) {
   std::error_code ec;
   const uint64_t size = std::filesystem::file_size(path, ec);
+  checkInputFile(path);
   std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
   if (ec || !f) throw InputError(path, "", "", "a readable inim binary ray file (cannot open it)");
   unsigned char h[kRayBinaryHeaderSize];
@@ -130,7 +123,7 @@ RaySet readRayBinary(const std::string& path, RayBinaryInfo* info) {
   RaySet rays;
   rays.resize(size_t(n));
   for (auto* v : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz}) readFloats(f.get(), *v, path);
-  rejectNonFiniteRays(rays, path);
+  checkRays(rays, path);
   return rays;
 }
 

@@ -2,7 +2,14 @@
 
 #include <algorithm>
 
+#include "core/error.h"
+
 namespace inim {
+
+void checkRays(const RaySet& r, const std::string& file) {
+  for (size_t i = 0; i < r.size(); ++i)
+    checkRay(Vec3d(r.ox[i], r.oy[i], r.oz[i]), Vec3d(r.dx[i], r.dy[i], r.dz[i]), file, "ray " + std::to_string(i));
+}
 
 void RaySet::resize(size_t n) {
   for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz}) v->resize(n);

@@ -9,9 +9,11 @@
 // y inner, increasing). RayAddress itself uses image conventions (rows from the top).
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/geometry.h"
+#include "core/ray_check.h"
 #include "display/ei_layout.h"
 
 namespace inim {
@@ -29,6 +31,9 @@ struct RaySet {
     dx[i] = d.x, dy[i] = d.y, dz[i] = d.z;
   }
 };
+
+// Every ray of the set; `where` of ray i is "ray i" (0-based, as the set numbers them).
+void checkRays(const RaySet& rays, const std::string& file);
 
 // One ray's place: EI (k, l) with k columns from the left and l rows from the top, and the
 // EI-local pixel (i, j), i columns from the EI's left, j rows from its top.

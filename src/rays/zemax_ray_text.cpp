@@ -1,5 +1,6 @@
 #include "rays/zemax_ray_text.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <fstream>
 #include <memory>
 
+#include "core/input_file.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -169,9 +171,17 @@ bool parseRayLine(const char* b, const char* e, double v[6]) {
   return p == e;
 }
 
+// A line of six comma-separated fields made of number characters (a ray with a NaN or an
+// unreadable number), as opposed to a header line of words.
+bool looksLikeRayLine(const char* b, const char* e) {
+  if (std::count(b, e, ',') != 5) return false;
+  return std::all_of(b, e, [](char c) { return std::strchr("0123456789+-.eE, \tnaNAifIF", c) != nullptr; });
+}
+
 }  // namespace
 
 RaySet readZemaxRayText(const std::string& path, std::vector<std::string>* header) {
+  checkInputFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "", "a readable ray text file (cannot open it)");
   in.seekg(0, std::ios::end);
@@ -206,17 +216,14 @@ RaySet readZemaxRayText(const std::string& path, std::vector<std::string>* heade
     if (s == e) return;  // blank
     double v[6];
     if (!parseRayLine(s, e, v)) {
-      if (!inData) {
+      if (!inData && !looksLikeRayLine(s, e)) {
         if (header) header->emplace_back(b, e);
         return;
       }
       throw InputError(path, "line " + std::to_string(lineNo), "\"" + std::string(b, std::min(e, b + 80)) + "\"",
                        "six comma-separated numbers x, y, z, l, m, n");
     }
-    double len2 = v[3] * v[3] + v[4] * v[4] + v[5] * v[5];
-    if (std::abs(len2 - 1.0) > 2e-4)
-      throw InputError(path, "line " + std::to_string(lineNo), "\"" + std::string(b, std::min(e, b + 80)) + "\"",
-                       "unit direction cosines (l^2 + m^2 + n^2 = 1)");
+    checkRay(Vec3d(v[0], v[1], v[2]), Vec3d(v[3], v[4], v[5]), path, "line " + std::to_string(lineNo));
     inData = true;
     rays.ox.push_back(float(v[0]));
     rays.oy.push_back(float(v[1]));

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "core/input_file.h"
 #include "core/error.h"
 
 namespace inim {
@@ -118,6 +119,7 @@ ObjMesh parseObj(const std::string& text, const std::string& name) {
 }
 
 ObjMesh loadObj(const std::string& path) {
+  checkInputFile(path);
   std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(path, "", "", "a readable OBJ file (cannot open it)");
   std::stringstream ss;

@@ -17,6 +17,7 @@
 #include <limits>
 #include <random>
 
+#include "core/input_file.h"
 #include "spectral/cie.h"
 
 namespace fs = std::filesystem;
@@ -332,6 +333,7 @@ std::string RGBToSpectrumTable::cachePath(int res) {
 }
 
 bool RGBToSpectrumTable::readCache(const std::string& path, int res) {
+  checkInputFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
   char magic[8];

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/input_file.h"
 #include "core/error.h"
 #include "core/format.h"
 
@@ -99,6 +100,7 @@ struct CsvTable {
 };
 
 CsvTable readCsv(const std::string& path) {
+  checkInputFile(path);
   std::ifstream in(path);
   if (!in) throw InputError(path, "", "", "a readable CSV file (cannot open it)");
   CsvTable t;

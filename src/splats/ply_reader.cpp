@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/input_file.h"
 #include "core/error.h"
 
 namespace inim {
@@ -83,6 +84,7 @@ int PlyElement::require(const std::string& property, const std::string& file) co
 }
 
 PlyFile PlyFile::read(const std::string& path) {
+  checkInputFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "file", "\"" + path + "\"", "a readable PLY file");
   std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -5,9 +5,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/input_file.h"
 #include "core/error.h"
 #include "core/file_kinds.h"
 #include "core/format.h"
+#include "core/ray_check.h"
 #include "splats/ply_reader.h"
 
 namespace inim {
@@ -25,6 +27,15 @@ double finiteValue(const PlyFile& ply, const PlyElement& e, size_t row, int p) {
   const double v = ply.value(e, row, p);
   if (!std::isfinite(v))
     throw InputError(ply.path(), e.name + "." + e.properties[size_t(p)].name, at(v, row), "a finite number");
+  return v;
+}
+
+// A position coordinate: finite and within the ray tracer's reach (core/ray_check.h).
+double coordinateValue(const PlyFile& ply, const PlyElement& e, size_t row, int p) {
+  const double v = finiteValue(ply, e, row, p);
+  if (!(std::fabs(v) <= kMaxRayCoordinateMm))
+    throw InputError(ply.path(), e.name + "." + e.properties[size_t(p)].name, at(v, row),
+                     "a coordinate within +-1e7 (the ray tracer's reach)");
   return v;
 }
 
@@ -86,7 +97,7 @@ Gaussians loadInriaPly(const PlyFile& ply) {
   g.resize(v.count, degree);
   const int perChannel = splatShCount(degree) - 1;
   for (size_t i = 0; i < v.count; ++i) {
-    g.position[i] = Vec3(finiteValue(ply, v, i, x), finiteValue(ply, v, i, y), finiteValue(ply, v, i, z));
+    g.position[i] = Vec3(coordinateValue(ply, v, i, x), coordinateValue(ply, v, i, y), coordinateValue(ply, v, i, z));
     for (int c = 0; c < 3; ++c)
       g.scale[i][c] = activateScale(finiteValue(ply, v, i, scale[c]), file, "vertex.scale_" + std::to_string(c), i);
     glm::dvec4 q;
@@ -140,8 +151,8 @@ std::vector<Chunk> readChunks(const PlyFile& ply, const PlyElement& ch) {
   for (size_t i = 0; i < ch.count; ++i) {
     Chunk& c = chunks[i];
     for (int k = 0; k < 3; ++k) {
-      c.posLo[k] = float(finiteValue(ply, ch, i, pos[k]));
-      c.posHi[k] = float(finiteValue(ply, ch, i, pos[k + 3]));
+      c.posLo[k] = float(coordinateValue(ply, ch, i, pos[k]));
+      c.posHi[k] = float(coordinateValue(ply, ch, i, pos[k + 3]));
       c.scaleLo[k] = float(finiteValue(ply, ch, i, scale[k]));
       c.scaleHi[k] = float(finiteValue(ply, ch, i, scale[k + 3]));
       for (int s : {scale[k], scale[k + 3]})
@@ -221,6 +232,7 @@ Gaussians loadSplatFile(const std::string& path) {
     throw InputError(path, "splat", std::to_string(size) + " bytes", "a multiple of 32 bytes (one splat per 32 bytes): truncated?");
   const size_t n = size / 32;
   requireSplats(path, "splat", n);
+  checkInputFile(path);
   std::ifstream in(path, std::ios::binary);
   std::vector<unsigned char> bytes(size);
   if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size)))
@@ -233,8 +245,9 @@ Gaussians loadSplatFile(const std::string& path) {
     float f[6];
     std::memcpy(f, r, sizeof f);
     for (int k = 0; k < 6; ++k)
-      if (!std::isfinite(f[k]) || (k >= 3 && !(f[k] > 0.0f)))
-        throw InputError(path, std::string("splat.") + kNames[k], at(f[k], i), k < 3 ? "a finite number" : "a finite scale > 0");
+      if (!(k < 3 ? std::fabs(f[k]) <= kMaxRayCoordinateMm : f[k] > 0.0f && std::isfinite(f[k])))
+        throw InputError(path, std::string("splat.") + kNames[k], at(f[k], i),
+                         k < 3 ? "a coordinate within +-1e7 (the ray tracer's reach)" : "a finite scale > 0");
     g.position[i] = Vec3(f[0], f[1], f[2]);
     g.scale[i] = Vec3(f[3], f[4], f[5]);
     for (int c = 0; c < 3; ++c) g.sh[i * 3 + size_t(c)] = (float(r[24 + c]) / 255.0f - 0.5f) / kShC0;

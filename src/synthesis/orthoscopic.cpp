@@ -1,8 +1,11 @@
 #include "synthesis/orthoscopic.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
+#include "core/format.h"
+#include "core/ray_check.h"
 
 namespace inim {
 
@@ -29,7 +32,14 @@ OrthoscopicQuery::Query OrthoscopicQuery::make(const Point3d& pinhole, const Vec
   Vec3d df = toField_.vector(q.displayDir);
   double len = std::sqrt(glm::dot(df, df));  // field units per display mm along the ray
   q.displayPerField = 1.0 / len;
-  q.ray.o = Point3(toField_.point(q.vcpPoint));
+  const Point3d o = toField_.point(q.vcpPoint);
+  if (!(std::max({std::abs(o.x), std::abs(o.y), std::abs(o.z)}) <= kMaxRayCoordinateMm && len > 0.0 &&
+        std::isfinite(len)))  // the ray tracer's door (core/ray_check.h), checked here for the placement's sake
+    throw InputError("", "placement",
+                     formatText("display ray %llu starting at (%.6g, %.6g, %.6g) in the field", (unsigned long long)id,
+                                o.x, o.y, o.z),
+                     "a placement that keeps every query within 1e7 of the field's origin (its scale and translate_mm)");
+  q.ray.o = Point3(o);
   q.ray.d = Vec3(df / len);
   q.ray.tNear = 0.0f;
   q.ray.tFar = kInfinity;

@@ -5,7 +5,10 @@
 #include <cstring>
 #include <filesystem>
 
+#include "core/input_file.h"
 #include "core/error.h"
+#include "core/format.h"
+#include "core/ray_check.h"
 
 namespace inim {
 
@@ -140,6 +143,7 @@ void SdfWriter::finish(bool raySetFluxIsSum) {
 SdfReader::SdfReader(const std::string& path) : path_(path) {
   std::error_code ec;
   uint64_t size = std::filesystem::file_size(path, ec);
+  checkInputFile(path);
   f_ = ec ? nullptr : std::fopen(path.c_str(), "rb");
   if (!f_) throw InputError(path, "", "", "a readable Zemax source file (cannot open it)");
   unsigned char b[kSdfHeaderSize];
@@ -176,6 +180,11 @@ size_t SdfReader::read(SdfRay* out, size_t max) {
     r.x = getF(p), r.y = getF(p), r.z = getF(p);
     r.l = getF(p), r.m = getF(p), r.n = getF(p);
     r.flux = getF(p), r.wavelengthUm = getF(p);
+    const std::string where = "ray " + std::to_string(done_ + i);
+    checkRay(Vec3d(r.x, r.y, r.z), Vec3d(r.l, r.m, r.n), path_, where);
+    if (!(r.flux >= 0.0f && std::isfinite(r.flux)) || !(r.wavelengthUm > 0.0f && r.wavelengthUm < 100.0f))
+      throw InputError(path_, where, formatText("flux %.9g, wavelength %.9g um", r.flux, r.wavelengthUm),
+                       "a finite flux >= 0 and a wavelength in (0, 100) um");
   }
   done_ += n;
   return n;

@@ -106,7 +106,7 @@ TEST(CliCampaignValues, NanRayInAnIraysInputIsRefused) {
   f.seekp(48 + 4 * 2);  // the third ray's origin x (columns of floats after the 48-byte header)
   f.write(reinterpret_cast<const char*>(&nan), sizeof nan);
   f.close();
-  expectBadInput("rays --in " + rays + " --out " + out, {"rays.irays", "ray 2 ox", "NaN"}, {out});
+  expectBadInput("rays --in " + rays + " --out " + out, {"rays.irays", "ray 2", "nan", "finite origin"}, {out});
 }
 
 TEST(CliCampaignValues, RelativeRmseOfBlackImagesIsNotNan) {

@@ -143,7 +143,7 @@ TEST(JsonConfig, MalformedJsonNamesFileAndPosition) {
 
 TEST(JsonConfig, IntegersNeverWrap) {
   Json j = Json::parse(R"({"spp": 4294967297, "count": 4294967304, "big": 1e12, "neg": -4294967295,
-                           "max": 2147483647, "min": -2147483648, "over": 2147483648, "u64": 18446744073709551615})");
+                           "int_max": 2147483647, "int_min": -2147483648, "over": 2147483648, "u64": 18446744073709551615})");
   JsonObject o(j, "run.json", "");
   for (const char* key : {"spp", "count", "big", "neg", "over", "u64"}) {
     InputError e = expectInputError([&] { o.integer(key); });
@@ -151,8 +151,9 @@ TEST(JsonConfig, IntegersNeverWrap) {
     EXPECT_EQ(e.key(), key);
     EXPECT_EQ(e.value(), j[key].dump()) << "the value as written";
   }
-  EXPECT_EQ(o.integer("max"), 2147483647);
-  EXPECT_EQ(o.integer("min"), -2147483648);
+  // Keys the settings table does not know keep only the call's own range (here int's).
+  EXPECT_EQ(o.integer("int_max"), 2147483647);
+  EXPECT_EQ(o.integer("int_min"), -2147483648);
   // A range check sees the value itself: 4294967304 is not 8.
   InputError e = expectInputError([&] { o.integer("count", 0, 1000); });
   EXPECT_EQ(e.value(), "4294967304");
@@ -183,4 +184,59 @@ TEST(JsonConfig, NonFiniteNumbersRefused) {
   EXPECT_THROW(o.integer("nan"), InputError);
   EXPECT_THROW(o.vec3("v"), InputError);
   EXPECT_THROW(o.numbers("n"), InputError);
+}
+
+TEST(JsonConfig, DuplicateKeysAreRefusedWithBothLines) {
+  const std::string text = "{\n  \"a\": 1,\n  \"panel\": {\"x\": 1,\n    \"x\": 2},\n  \"b\": 3\n}\n";
+  try {
+    parseJsonText(text, "d.json");
+    FAIL() << "duplicate key accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "d.json");
+    EXPECT_EQ(e.key(), "x");
+    EXPECT_EQ(e.value(), "given twice (lines 3 and 4)");
+  }
+  // The same key in different objects, or the same text as a value, is not a duplicate.
+  EXPECT_NO_THROW(parseJsonText(R"({"a": {"x": 1}, "b": {"x": 2}, "c": "x", "x": "a"})", "ok.json"));
+  // Top-level duplicates after nested objects are still seen.
+  EXPECT_THROW(parseJsonText(R"({"k": {"k": 1}, "k": 2})", "top.json"), InputError);
+}
+
+TEST(JsonConfig, LongKeysAndValuesAreTruncatedWithTheirLength) {
+  const std::string key(1 << 20, 'k');
+  Json j = parseJsonText("{\"" + key + "\": 1}", "long.json");
+  JsonObject o(j, "long.json", "");
+  try {
+    o.rejectUnknown();
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_LT(std::string(e.what()).size(), 1000u);
+    EXPECT_NE(e.key().find("(1048576 bytes)"), std::string::npos) << e.key();
+  }
+}
+
+TEST(JsonConfig, InvalidUtf8IsEchoedAsValidText) {
+  Json j = Json::object();
+  j["layout"] = std::string("\xff\xfe", 2);
+  EXPECT_NO_THROW(jsonValueText(j));
+  const std::string text = jsonText(j);
+  EXPECT_NE(text.find("\xef\xbf\xbd"), std::string::npos) << text;  // U+FFFD
+}
+
+TEST(JsonConfig, NumbersOutsideTheirKeysRangeNameKeyValueAndRange) {
+  Json j = parseJsonText(R"({"panel": {"pixel_pitch_mm": 9.223372036854775808e18, "gamma": 2.2}})", "p.json");
+  const JsonObject panel = JsonObject(j, "p.json", "").object("panel");
+  EXPECT_EQ(panel.positive("gamma"), 2.2);
+  try {
+    panel.positive("pixel_pitch_mm");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "p.json");
+    EXPECT_EQ(e.key(), "panel.pixel_pitch_mm");
+    EXPECT_EQ(e.expected(), "a number in [0.0001, 10]");
+  }
+  // Each element of an array, and whole numbers too.
+  Json v = parseJsonText(R"({"rotate_deg": [0, 1e308, 0], "resolution_px": [100000, 10]})", "v.json");
+  EXPECT_THROW(JsonObject(v, "v.json", "").vec3("rotate_deg"), InputError);
+  EXPECT_THROW(JsonObject(v, "v.json", "").integers("resolution_px", 1, 1 << 30), InputError);
 }
