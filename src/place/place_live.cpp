@@ -1,6 +1,7 @@
 #include "place/place_live.h"
 
 #include "core/error.h"
+#include "core/json_config.h"
 
 namespace inim {
 
@@ -10,7 +11,7 @@ std::string liveImageFrame(const ImageAnswer& a) {
     h["server_ms"] = a.serverMs, h["counts"] = a.counts;
   else
     h["error"] = a.error.empty() ? "the level-0 image failed" : a.error;
-  const std::string head = h.dump();
+  const std::string head = jsonText(h);
   const uint32_t n = uint32_t(head.size());
   std::string frame{char(n >> 24), char(n >> 16), char(n >> 8), char(n)};
   frame += head;
@@ -44,7 +45,7 @@ void LiveChannel::onText(const std::string& text) {
   } catch (const std::exception& e) {
     answer = {{"error", e.what()}, {"status", 500}};
   }
-  send_(false, answer.dump());
+  send_(false, jsonText(answer));
   if (!answer.contains("state")) return;
   {  // after the answer, so that the page knows the revision before its image comes
     std::lock_guard<std::mutex> lock(mutex_);
@@ -54,7 +55,7 @@ void LiveChannel::onText(const std::string& text) {
 }
 
 void LiveChannel::onBinary() {
-  send_(false, Json{{"error", "message: a JSON state patch as text expected"}, {"status", 400}}.dump());
+  send_(false, jsonText(Json{{"error", "message: a JSON state patch as text expected"}, {"status", 400}}));
 }
 
 // Level 0 of `revision`, waited for in short steps so that closing the channel is not held up.

@@ -1,5 +1,6 @@
 #include "place/place_server.h"
 
+#include <arpa/inet.h>
 #include <civetweb.h>
 
 #include <charconv>
@@ -10,6 +11,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/json_config.h"
 #include "core/output_file.h"
 #include "place/place_jobs.h"
 #include "place/place_live.h"
@@ -34,6 +36,16 @@ bool constantTimeEqual(const std::string& a, const std::string& b) {
     diff |= unsigned(x ^ y);
   }
   return diff == 0;
+}
+
+void checkListenHost(const std::string& host) {
+  const std::string bare = host.size() > 2 && host.front() == '[' && host.back() == ']' ? host.substr(1, host.size() - 2) : host;
+  unsigned char address[16];
+  if (host == "localhost" || inet_pton(AF_INET, host.c_str(), address) == 1 ||
+      inet_pton(AF_INET6, bare.c_str(), address) == 1)
+    return;
+  throw InputError("", "host", "\"" + host + "\"",
+                   "an IPv4 address (127.0.0.1, or 0.0.0.0 for every interface), an IPv6 address or localhost");
 }
 
 bool isLoopbackHost(const std::string& host) {
@@ -65,7 +77,7 @@ const char* statusText(int s) {
   }
 }
 
-Answer json(const Json& j, int status = 200) { return {status, "application/json", j.dump(), ""}; }
+Answer json(const Json& j, int status = 200) { return {status, "application/json", jsonText(j), ""}; }
 Answer error(int status, const std::string& message) { return json({{"error", message}}, status); }
 
 // Head and body in one write: with TCP_NODELAY (which the live channel needs: without it a
@@ -82,11 +94,22 @@ void send(mg_connection* c, const Answer& a) {
   mg_write(c, out.data(), out.size());
 }
 
+// The value of query parameter `name`, spelt exactly so (civetweb's own look-up ignores case:
+// "?Token=" would pass for "?token="), URL-decoded; "" when absent.
 std::string queryVar(const mg_request_info* ri, const char* name) {
   if (!ri->query_string) return {};
-  char buf[256];
-  const int n = mg_get_var(ri->query_string, std::strlen(ri->query_string), name, buf, sizeof buf);
-  return n >= 0 ? std::string(buf, size_t(n)) : std::string();
+  const std::string query = ri->query_string, key = std::string(name) + "=";
+  for (size_t at = 0; at <= query.size();) {
+    const size_t end = std::min(query.find('&', at), query.size());
+    if (query.compare(at, key.size(), key) == 0 && at + key.size() <= end) {
+      const std::string raw = query.substr(at + key.size(), end - at - key.size());
+      std::string decoded(raw.size() + 1, '\0');
+      const int n = mg_url_decode(raw.data(), int(raw.size()), decoded.data(), int(decoded.size()), 1);
+      return n >= 0 ? decoded.substr(0, size_t(n)) : std::string();
+    }
+    at = end + 1;
+  }
+  return {};
 }
 
 // A whole number from a query parameter; InputError naming it otherwise.
@@ -132,7 +155,7 @@ Answer imageAnswer(const ImageAnswer& a, int level) {
   std::snprintf(ms, sizeof ms, "%.1f", a.serverMs);
   Answer r{200, "image/png", a.png, ""};
   r.headers = "X-Inim-Revision: " + std::to_string(a.revision) + "\r\nX-Inim-Level: " + std::to_string(level) +
-              "\r\nX-Inim-Server-Ms: " + ms + "\r\nX-Inim-Counts: " + a.counts.dump() + "\r\n";
+              "\r\nX-Inim-Server-Ms: " + ms + "\r\nX-Inim-Counts: " + jsonText(a.counts) + "\r\n";
   return r;
 }
 
@@ -148,11 +171,16 @@ Answer staticFile(const std::string& name, const std::string& type) {
 
 PlaceServer::PlaceServer(PlaceSession& session, const PlaceServerOptions& options)
     : session_(session), options_(options), token_(options.token.empty() ? randomToken() : options.token) {
+  checkListenHost(options.host);
   mg_init_library(0);
   const std::string host = options.host.find(':') != std::string::npos && options.host[0] != '['
                                ? "[" + options.host + "]" : options.host;
   const std::string ports = host + ":" + std::to_string(options.port);
-  const char* opts[] = {"listening_ports", ports.c_str(), "num_threads", "16", "request_timeout_ms", "120000",
+  // Workers for every client the page can have and then some: a connection holds a worker until
+  // it is answered (at once without the token) or idle for request_timeout_ms, and a live
+  // channel holds one while open (at most kMaxLiveChannels), so idle or slow clients cannot take
+  // them all (tests/place: 64 idle and 64 slow connections, and the page is still served).
+  const char* opts[] = {"listening_ports", ports.c_str(), "num_threads", "256", "request_timeout_ms", "10000",
                         "tcp_nodelay", "1",
                         // An idle live channel is pinged, not closed.
                         "websocket_timeout_ms", "30000", "enable_websocket_ping_pong", "yes", nullptr};
@@ -181,14 +209,22 @@ std::string PlaceServer::url() const {
   return "http://" + host + ":" + std::to_string(port_) + "/?token=" + token_;
 }
 
-int PlaceServer::handleRequest(mg_connection* c, void* self) { return static_cast<PlaceServer*>(self)->handle(c); }
+// No exception may cross civetweb's C frames: whatever escapes the handler is a 500.
+int PlaceServer::handleRequest(mg_connection* c, void* self) {
+  try {
+    return static_cast<PlaceServer*>(self)->handle(c);
+  } catch (...) {
+    send(c, Answer{500, "application/json", "{\"error\":\"internal error\"}", ""});
+    return 500;
+  }
+}
 
 // Access: the token as query parameter, header or (for plain requests) the page's cookie. The
 // live channel takes no cookie: a WebSocket handshake is not bound to its origin as a fetch is.
-bool PlaceServer::allowed(const mg_connection* c, bool cookie) const {
+bool PlaceServer::allowed(const mg_connection* c, bool plainRequest) const {
   std::string given = queryVar(mg_get_request_info(c), "token");
-  if (given.empty() && mg_get_header(c, "X-Inim-Token")) given = mg_get_header(c, "X-Inim-Token");
-  if (cookie && given.empty() && mg_get_header(c, "Cookie")) {
+  if (plainRequest && given.empty() && mg_get_header(c, "X-Inim-Token")) given = mg_get_header(c, "X-Inim-Token");
+  if (plainRequest && given.empty() && mg_get_header(c, "Cookie")) {
     char buf[128];
     const int n = mg_get_cookie(mg_get_header(c, "Cookie"), "inim_token", buf, sizeof buf);
     if (n > 0) given.assign(buf, size_t(n));
@@ -199,10 +235,15 @@ bool PlaceServer::allowed(const mg_connection* c, bool cookie) const {
 // The live channel (place/place_live.h): one LiveChannel per WebSocket, kept as the
 // connection's user data from the handshake to the close.
 int PlaceServer::liveConnect(const mg_connection* c, void* self) {
-  if (static_cast<PlaceServer*>(self)->allowed(c, false)) return 0;
-  // civetweb sends nothing for a refused handshake: the 403 is this handler's answer.
-  send(const_cast<mg_connection*>(c), forbidden());
-  return 1;
+  auto* server = static_cast<PlaceServer*>(self);
+  // civetweb sends nothing for a refused handshake: the 403 or 503 is this handler's answer.
+  if (!server->allowed(c, false)) return send(const_cast<mg_connection*>(c), forbidden()), 1;
+  if (++server->liveChannels_ > kMaxLiveChannels) {
+    --server->liveChannels_;
+    send(const_cast<mg_connection*>(c), error(503, "too many live channels open (" + std::to_string(kMaxLiveChannels) + ")"));
+    return 1;
+  }
+  return 0;
 }
 
 void PlaceServer::liveReady(mg_connection* c, void* self) {
@@ -226,8 +267,9 @@ int PlaceServer::liveData(mg_connection* c, int bits, char* data, size_t size, v
   return 1;
 }
 
-void PlaceServer::liveClose(const mg_connection* c, void*) {
+void PlaceServer::liveClose(const mg_connection* c, void* self) {
   delete static_cast<LiveChannel*>(mg_get_user_connection_data(c));
+  --static_cast<PlaceServer*>(self)->liveChannels_;
 }
 
 int PlaceServer::handle(mg_connection* c) {

@@ -6,6 +6,7 @@
 //
 //   PlaceServer server(session, {"127.0.0.1", 0});
 //   std::puts(server.url().c_str());  // http://127.0.0.1:PORT/?token=...
+#include <atomic>
 #include <cstddef>
 #include <string>
 
@@ -28,6 +29,9 @@ struct PlaceServerOptions {
 std::string randomToken();
 // Equal strings, in time that does not depend on where they differ.
 bool constantTimeEqual(const std::string& a, const std::string& b);
+// InputError naming `host` unless it is an IPv4 address (dotted quad, each part 0-255), an
+// IPv6 address (bracketed or not) or localhost: nothing else is bound or resolved.
+void checkListenHost(const std::string& host);
 // Whether `host` names a loopback interface (127.0.0.0/8, ::1, localhost).
 bool isLoopbackHost(const std::string& host);
 
@@ -46,7 +50,9 @@ class PlaceServer {
  private:
   static int handleRequest(mg_connection* c, void* self);
   int handle(mg_connection* c);
-  bool allowed(const mg_connection* c, bool cookie) const;
+  // The token: in the query (every request), or the X-Inim-Token header or the page's cookie
+  // (plain requests only; a live channel gives it in its address, docs/place-api.md).
+  bool allowed(const mg_connection* c, bool plainRequest) const;
   static int liveConnect(const mg_connection* c, void* self);
   static void liveReady(mg_connection* c, void* self);
   static int liveData(mg_connection* c, int bits, char* data, size_t size, void* self);
@@ -57,6 +63,8 @@ class PlaceServer {
   std::string token_;
   int port_ = 0;
   mg_context* ctx_ = nullptr;
+  static constexpr int kMaxLiveChannels = 32;  // more are answered 503: each holds a worker
+  std::atomic<int> liveChannels_{0};
 };
 
 }  // namespace inim

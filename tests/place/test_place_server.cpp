@@ -1,7 +1,11 @@
 // The placement page's server over loopback (src/place/place_server.h): access by token, the
 // state API, previews by revision, bad requests, and writes that stay in the output folder.
 // Requests go through civetweb's own client, as a browser's would over TCP.
+#include <arpa/inet.h>
 #include <civetweb.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -184,4 +188,80 @@ TEST_F(PlaceServerTest, WritesStayInTheOutputFolderAndAreWhole) {
   EXPECT_FALSE(f["error"].get<std::string>().empty());
   for (const auto& e : fs::directory_iterator(served_->session.outDir()))
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+namespace {
+
+// Whether `s` is valid UTF-8 (what every answer must be, whatever bytes a request held).
+bool validUtf8(const std::string& s) {
+  for (size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    const int n = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 0;
+    if (n == 0 || i + size_t(n) > s.size()) return false;
+    for (int k = 1; k < n; ++k)
+      if ((static_cast<unsigned char>(s[i + size_t(k)]) >> 6) != 2) return false;
+    i += size_t(n);
+  }
+  return true;
+}
+
+// A TCP connection to the server that says nothing (idle) or only part of a request (slow).
+int openRaw(int port, const std::string& say) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(uint16_t(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) return close(fd), -1;
+  if (!say.empty()) (void)!write(fd, say.data(), say.size());
+  return fd;
+}
+
+}  // namespace
+
+TEST_F(PlaceServerTest, NonUtf8BytesInARequestGiveAValidAnswerAndTheServerLives) {
+  const std::vector<Http> answers = {
+      send("PUT", "/api/state", "{\"layout\": \"\xff\"}"),
+      get("/api/file?name=%FF.png"),
+      get("/api/preview?level=%FF&revision=0"),
+      get("/%FF"),
+      get("/api/jobs/%FF%FE"),
+  };
+  for (const Http& h : answers) {
+    EXPECT_GE(h.status, 400) << h.body;
+    EXPECT_LT(h.status, 500) << h.body;
+    EXPECT_TRUE(validUtf8(h.body)) << h.body;
+    EXPECT_NO_THROW(h.json()) << h.body;
+  }
+  EXPECT_EQ(get("/api/state").status, 200);
+}
+
+TEST_F(PlaceServerTest, TheTokenCountsOnlyWhereTheDocsSayIt) {
+  const int port = served_->server.port();
+  const std::string token = served_->server.token();
+  EXPECT_EQ(request(port, "GET", "/api/state?token=" + token).status, 200);
+  EXPECT_EQ(request(port, "GET", "/api/state?Token=" + token).status, 403);
+  EXPECT_EQ(request(port, "GET", "/api/state?TOKEN=" + token).status, 403);
+  EXPECT_EQ(request(port, "GET", "/api/state?xtoken=" + token).status, 403);
+  // The live channel takes the token in its address only, not in a header.
+  const std::string upgrade = "Upgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
+                              "Sec-WebSocket-Version: 13\r\n";
+  EXPECT_EQ(request(port, "GET", "/api/live", "", upgrade + "X-Inim-Token: " + token + "\r\n").status, 403);
+}
+
+TEST_F(PlaceServerTest, IdleAndSlowClientsCannotLockThePage) {
+  const int port = served_->server.port();
+  std::vector<int> held;
+  for (int i = 0; i < 64; ++i) held.push_back(openRaw(port, ""));                       // idle, no token
+  for (int i = 0; i < 64; ++i) held.push_back(openRaw(port, "GET /api/state HTTP/1.1\r\nHo"));  // slow
+  for (int fd : held) ASSERT_GE(fd, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // every one accepted and waiting
+  const auto t0 = std::chrono::steady_clock::now();
+  const uint64_t r = revision();
+  const Http p = get("/api/preview?level=0&revision=" + std::to_string(r));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(p.status, 200) << p.body;
+  // Served while all 128 are held: well before any of them times out (10 s), not after.
+  EXPECT_LT(seconds, 5.0);
+  for (int fd : held) close(fd);
 }
