@@ -9,9 +9,13 @@
 //   std::string file = fixtures::scratchFile("display.json", fixtures::smallDisplayJson({11, 9, 9}));
 //   InputError e = expectInputError([&] { loadDisplay(file); });
 #include <gtest/gtest.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -36,12 +40,39 @@ class ScratchDir {
   explicit ScratchDir(const std::string& tag)
       : dir_(std::filesystem::temp_directory_path() / ("inim_" + tag + "_" + std::to_string(getpid()))) {}
   ~ScratchDir() {
+    recordDigests();
     std::error_code ec;
     std::filesystem::remove_all(dir_, ec);
   }
   ScratchDir(const ScratchDir&) = delete;
   ScratchDir& operator=(const ScratchDir&) = delete;
   const std::filesystem::path& dir() const { return dir_; }
+  // With INIM_TEST_DIGESTS=FILE set, one line per file left in the folder is appended to FILE
+  // before the folder goes: "<tag>/<path> <FNV-1a 64 of its bytes>", so that two runs of the
+  // suite can be compared output by output (scripts/test-output-digests.sh).
+  void recordDigests() const {
+    const char* file = std::getenv("INIM_TEST_DIGESTS");
+    std::error_code ec;
+    if (!file || !*file || !std::filesystem::is_directory(dir_, ec)) return;
+    std::string tag = dir_.filename().string();
+    tag = tag.substr(0, tag.rfind('_'));  // without the process id
+    std::string lines;
+    for (auto it = std::filesystem::recursive_directory_iterator(dir_, ec); !ec && it != decltype(it)(); it.increment(ec)) {
+      const auto type = it->symlink_status(ec).type();
+      if (ec || type != std::filesystem::file_type::regular) {  // links (a test's loops) are not outputs
+        ec.clear();
+        continue;
+      }
+      std::ifstream in(it->path(), std::ios::binary);
+      uint64_t h = 1469598103934665603ull;
+      for (std::istreambuf_iterator<char> c(in), end; c != end; ++c) h = (h ^ uint8_t(*c)) * 1099511628211ull;
+      char hex[17];
+      std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)h);
+      lines += tag + "/" + std::filesystem::relative(it->path(), dir_).string() + " " + hex + "\n";
+    }
+    const int fd = open(file, O_WRONLY | O_CREAT | O_APPEND, 0644);  // one write: runs in parallel do not interleave
+    if (fd >= 0) (void)!write(fd, lines.data(), lines.size()), close(fd);
+  }
   // `name` inside the folder, which is created on first use.
   std::string path(const std::string& name) const {
     std::filesystem::create_directories(dir_);

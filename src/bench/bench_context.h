@@ -51,6 +51,7 @@ void registerRadianceBenchmarks(const RadianceBenchSettings& settings);
 void printRadianceBenchResults();
 void registerFig11Benchmarks();
 void registerSplatBenchmarks(double minTime);
+void registerSceneBenchmarks();
 void registerPlaceBenchmarks(const RadianceBenchSettings& model, double minTime);
 void printFig11BenchResults();
 

@@ -50,6 +50,7 @@ void runBenchmarks(const BenchSettings& settings) {
   bench::registerViewBenchmarks(settings.view);
   bench::registerFig11Benchmarks();
   bench::registerSplatBenchmarks(settings.minTime);
+  bench::registerSceneBenchmarks();
   bench::registerPlaceBenchmarks(settings.radiance, settings.minTime);
   // Debian builds libbenchmark without NDEBUG, so it prints a DEBUG warning; inim itself is a
   // Release build (see the header line below).

@@ -22,6 +22,8 @@
 //                          preview ready (one ray per lenslet, PNG), for the default scene, the
 //                          shipped splats and a trained model (when one is given); target
 //                          <= 100 ms on 2 cores
+//   scene/load-spheres/N   a scene description of N spheres parsed and read (10k, 100k, 1M):
+//                          linear in N; target: 1M in seconds
 //   radiance/train-lego    train on the Lego scene (when its folder is given) at 200 x 200, every
 //                          8th view held out; reports the held-out PSNR; target >= 28 dB within
 //                          10 minutes

@@ -6,6 +6,7 @@
 #include "cli/options.h"
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/output_file.h"
 #include "core/size_budget.h"
 
 int main(int argc, char** argv) {
@@ -28,13 +29,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "inim: interrupted by signal %d; unfinished outputs removed\n", e.signal);
     return e.exitStatus();
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
-    return code == 0 ? 0 : inim::kExitBadInput;
+    if (const std::string unknown = inim::cli::unknownCommandMessage(argc, argv); !unknown.empty())
+      return std::fprintf(stderr, "inim: error: %s\n", unknown.c_str()), inim::kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    return std::fprintf(stderr, "inim: error: %s (--help lists the options)\n", e.what()), inim::kExitBadInput;
   } catch (const inim::InputError& e) {
     std::fprintf(stderr, "inim: error: %s\n", inim::cli::asCommandLineError(e).what());
     return inim::kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "inim: failed: %s\n", e.what());
+    std::fprintf(stderr, "inim: failed: %s\n", inim::withOutputNames(e.what()).c_str());
     return 1;
   }
   // A signal after the last commit: the outputs are whole, but the stop request is still told.

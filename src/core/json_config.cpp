@@ -88,7 +88,8 @@ class CheckedSax {
   // The line of key `k`: the keys come in the order of the text, so each is searched for from
   // the previous one on (as written: "k" then ':'); 0 when it is spelt with escapes.
   size_t lineOfKey(const std::string& k) {
-    const std::string quoted = Json(k).dump();
+    const bool plain = std::none_of(k.begin(), k.end(), [](char c) { return c == '"' || c == '\\' || uint8_t(c) < 0x20; });
+    const std::string quoted = plain ? "\"" + k + "\"" : jsonText(Json(k));  // as the file spells it
     for (size_t at = text_.find(quoted, cursor_); at != std::string::npos; at = text_.find(quoted, at + 1)) {
       const size_t after = text_.find_first_not_of(" \t\r\n", at + quoted.size());
       if (after == std::string::npos || text_[after] != ':') continue;

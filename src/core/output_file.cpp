@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <mutex>
 #include <regex>
 #include <stdexcept>
 
@@ -80,20 +81,60 @@ OutputSet::~OutputSet() {
   for (const auto& e : entries_) fs::remove(e.tmp, ec);
 }
 
+namespace {
+
+// Where an output named `asked` is written: the file itself, or the file a symbolic link (or a
+// chain of them) names, so that the link stays a link. InputError naming `asked` for a loop or
+// a directory.
+fs::path outputTarget(const std::string& asked) {
+  fs::path p(asked);
+  for (int hops = 0; fs::is_symlink(fs::symlink_status(p)); ++hops) {
+    if (hops == 40) throw InputError(asked, "", "a loop of symbolic links", "an output file, a new name or a link to one");
+    const fs::path to = fs::read_symlink(p);
+    p = to.is_absolute() ? to : p.parent_path() / to;
+  }
+  if (fs::is_directory(p)) throw InputError(asked, "", "a directory", "an output file name");
+  return p;
+}
+
+}  // namespace
+
+namespace {
+
+std::mutex outputNamesMutex;
+std::vector<std::pair<std::string, std::string>> outputNames;  // temporary -> the output asked for
+
+}  // namespace
+
+std::string withOutputNames(std::string message) {
+  std::lock_guard<std::mutex> lock(outputNamesMutex);
+  for (const auto& [tmp, asked] : outputNames)
+    for (size_t at = message.find(tmp); at != std::string::npos; at = message.find(tmp, at + asked.size()))
+      message.replace(at, tmp.size(), asked);
+  return message;
+}
+
 std::string OutputSet::add(const std::string& finalPath) {
-  fs::path p(finalPath);
+  const fs::path p = outputTarget(finalPath);
   std::error_code ec;
   if (p.has_parent_path()) {
     fs::create_directories(p.parent_path(), ec);
     if (ec) throw InputError(finalPath, "", "", "a writable output folder (" + ec.message() + ")");
   }
+  const std::string dir = p.has_parent_path() ? p.parent_path().string() : ".";
+  if (access(dir.c_str(), W_OK) != 0)  // read-only, or not ours: refused before any work
+    throw InputError(finalPath, "", "", "a writable output folder (" + std::string(std::strerror(errno)) + ")");
   const std::string folder = p.parent_path().string();
   if (std::find(folders_.begin(), folders_.end(), folder) == folders_.end()) {
     removeStaleTemporaries(folder);
     folders_.push_back(folder);
   }
   const fs::path tmp = p.parent_path() / temporaryName(p, getpid());
-  entries_.push_back({tmp.string(), finalPath});
+  entries_.push_back({tmp.string(), p.string()});
+  {
+    std::lock_guard<std::mutex> lock(outputNamesMutex);
+    outputNames.emplace_back(tmp.string(), finalPath);
+  }
   return tmp.string();
 }
 

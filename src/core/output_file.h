@@ -31,6 +31,10 @@ class OutputSet {
   bool committed_ = false;
 };
 
+// `message` with every temporary this process made (OutputSet::add) replaced by the output it
+// stands for, so that an error while writing (a full disk) names the file the user asked for.
+std::string withOutputNames(std::string message);
+
 // Removes inim's temporaries (.<stem>.tmp<pid><ext>) in `folder` whose process is gone;
 // returns how many. Other files, and temporaries of live processes, are left alone.
 int removeStaleTemporaries(const std::string& folder);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -418,11 +419,16 @@ const std::vector<SettingInfo>& settingsTable() {
 }
 
 const SettingInfo* findSetting(std::string_view key, std::string_view scope) {
+  // Every number a file gives is looked up: an index by key, not a scan of the table.
+  static const std::unordered_multimap<std::string_view, const SettingInfo*> byKey = [] {
+    std::unordered_multimap<std::string_view, const SettingInfo*> m;
+    for (const SettingInfo& s : settingsTable()) m.emplace(s.key, &s);
+    return m;
+  }();
   const SettingInfo* general = nullptr;
-  for (const SettingInfo& s : settingsTable()) {
-    if (s.key != key) continue;
-    if (!scope.empty() && s.scope == scope) return &s;
-    if (s.scope.empty()) general = &s;
+  for (auto [it, end] = byKey.equal_range(key); it != end; ++it) {
+    if (!scope.empty() && it->second->scope == scope) return it->second;
+    if (it->second->scope.empty()) general = it->second;
   }
   return general;
 }

@@ -1,4 +1,3 @@
-#include "core/format.h"
 #include "scene/scene_loader.h"
 
 #include <algorithm>
@@ -6,10 +5,13 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/interrupt.h"
 #include "core/file_kinds.h"
+#include "core/format.h"
 #include "core/output_file.h"
 #include "scene/obj_loader.h"
 #include "spectral/cie.h"
@@ -462,6 +464,7 @@ struct Loader {
   std::string file;
   SceneDescription d;
   std::map<std::string, int> materialIndex;
+  std::unordered_map<int, size_t> objectOfId;  // an id -> the object that has it: one look-up per object
 
   int materialFor(const JsonObject& o) {
     const Json& v = o.raw("material");
@@ -497,10 +500,10 @@ struct Loader {
 
   void parseObject(const JsonObject& o, size_t index) {
     SceneObject so;
+    throwIfInterrupted();  // a scene of a million objects still stops at once
     so.id = o.integer("id", int(index) + 1);
-    for (const SceneObject& other : d.objects)
-      if (other.id == so.id)
-        o.fail("id", std::to_string(so.id), "an id no other object has (\"" + other.name + "\" has it)");
+    if (auto [it, added] = objectOfId.emplace(so.id, d.objects.size()); !added)
+      o.fail("id", std::to_string(so.id), "an id no other object has (\"" + d.objects[it->second].name + "\" has it)");
     so.name = o.string("name", "object" + std::to_string(so.id));
     so.type = o.choice("type", {"sphere", "box", "rectangle", "disk", "cylinder", "mesh"});
     int mi = materialFor(o);
@@ -666,6 +669,9 @@ struct Loader {
     }
     if (root.has("objects")) {
       std::vector<JsonObject> objs = root.objects("objects");
+      d.objects.reserve(objs.size());  // no copies of a million shapes while they are added
+      d.shapes.reserve(d.shapes.size() + objs.size());
+      objectOfId.reserve(objs.size());
       for (size_t i = 0; i < objs.size(); ++i) parseObject(objs[i], i);
     }
     if (root.has("lights")) {
