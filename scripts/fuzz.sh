@@ -39,7 +39,7 @@ fuzzer() {
   local t="$1"
   shift
   (cd "$BUILD" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 TMPDIR="$BUILD" \
-     "./fuzz_$t" -timeout=30 -rss_limit_mb=3072 -max_len=65536 "$@")
+     LSAN_OPTIONS="suppressions=$ROOT/fuzz/lsan.supp" "./fuzz_$t" -timeout=30 -rss_limit_mb=3072 -max_len=65536 "$@")
 }
 
 # Unpacks the stored corpus of target $1 into a fresh build/fuzz/corpus/<target>/.

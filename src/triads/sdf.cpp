@@ -146,22 +146,28 @@ SdfReader::SdfReader(const std::string& path) : path_(path) {
   checkInputFile(path);
   f_ = ec ? nullptr : std::fopen(path.c_str(), "rb");
   if (!f_) throw InputError(path, "", "", "a readable Zemax source file (cannot open it)");
-  unsigned char b[kSdfHeaderSize];
-  if (size < kSdfHeaderSize || std::fread(b, 1, kSdfHeaderSize, f_) != kSdfHeaderSize)
-    throw InputError(path, "", std::to_string(size) + " bytes", "a Zemax source file (208-byte header)");
-  header_ = decodeSdfHeader(b);
-  if (header_.identifier != kSdfIdentifier)
-    throw InputError(path, "identifier", std::to_string(header_.identifier),
-                     "1010 (a Zemax binary source file)");
-  if (header_.rayFormat != kSdfFormatSpectral)
-    throw InputError(path, "ray format", std::to_string(header_.rayFormat),
-                     "2 (spectral: x y z l m n flux wavelength); flux-only files are not supported");
-  uint64_t expected = kSdfHeaderSize + kSdfRaySize * uint64_t(header_.numRays);
-  if (size != expected)
-    throw InputError(path, "number of rays",
-                     std::to_string(header_.numRays) + " rays in a file of " + std::to_string(size) + " bytes",
-                     "file size 208 + 32 x rays = " + std::to_string(expected) +
-                         " bytes (truncated or padded file)");
+  try {  // a refused header must not leave the file open (the destructor does not run)
+    unsigned char b[kSdfHeaderSize];
+    if (size < kSdfHeaderSize || std::fread(b, 1, kSdfHeaderSize, f_) != kSdfHeaderSize)
+      throw InputError(path, "", std::to_string(size) + " bytes", "a Zemax source file (208-byte header)");
+    header_ = decodeSdfHeader(b);
+    if (header_.identifier != kSdfIdentifier)
+      throw InputError(path, "identifier", std::to_string(header_.identifier),
+                       "1010 (a Zemax binary source file)");
+    if (header_.rayFormat != kSdfFormatSpectral)
+      throw InputError(path, "ray format", std::to_string(header_.rayFormat),
+                       "2 (spectral: x y z l m n flux wavelength); flux-only files are not supported");
+    uint64_t expected = kSdfHeaderSize + kSdfRaySize * uint64_t(header_.numRays);
+    if (size != expected)
+      throw InputError(path, "number of rays",
+                       std::to_string(header_.numRays) + " rays in a file of " + std::to_string(size) + " bytes",
+                       "file size 208 + 32 x rays = " + std::to_string(expected) +
+                           " bytes (truncated or padded file)");
+  } catch (...) {
+    std::fclose(f_);
+    f_ = nullptr;
+    throw;
+  }
 }
 
 SdfReader::~SdfReader() {

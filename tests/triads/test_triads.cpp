@@ -1,6 +1,8 @@
 // Triads, the Zemax SDF source file, and EIA formation on a detector at the panel plane.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -226,4 +228,23 @@ TEST(Triads, FullDisplaySdfStreamsAndFormsTheEia) {
   float worst = 0.0f;
   for (size_t i = 0; i < eia.data.size(); ++i) worst = std::max(worst, std::abs(f.eia.data[i] - eia.data[i]));
   EXPECT_LE(worst, 1e-6f);
+}
+
+// Found by the sdf fuzz target: a refused header left its file open, so after ~1,000 bad files
+// every read failed with "cannot open it". Each of 2,000 bad files must be refused for itself.
+TEST(Sdf, ARefusedHeaderClosesItsFile) {
+  const std::string bad = fixtures::scratchFile("bad-header.sdf", std::string(300, '\x07'));
+  rlimit saved{};
+  getrlimit(RLIMIT_NOFILE, &saved);
+  rlimit low = saved;
+  low.rlim_cur = std::min<rlim_t>(saved.rlim_cur, 256);  // a leak shows within 2,000 reads
+  setrlimit(RLIMIT_NOFILE, &low);
+  for (int i = 0; i < 2000; ++i) {
+    const InputError e = fixtures::expectInputError([&] { (void)readSdf(bad); });
+    if (e.key() != "identifier") {
+      ADD_FAILURE() << "read " << i << ": " << e.what();
+      break;
+    }
+  }
+  setrlimit(RLIMIT_NOFILE, &saved);
 }
