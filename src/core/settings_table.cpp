@@ -35,7 +35,8 @@ SettingInfo file(std::string_view key, double lo, double hi, std::string_view he
   return {key, kFileScope, lo, hi, "", help};
 }
 
-std::vector<SettingInfo> makeTable() {
+// Every run, its inputs and their placement.
+std::vector<SettingInfo> runAndInputSettings() {
   return {
       // Every run
       text("seed", "", "Random seed, a whole number 0 to 2^64-1; output depends on it only (default: 1)"),
@@ -72,6 +73,12 @@ std::vector<SettingInfo> makeTable() {
            "at 0.0075 units/mm: 133.33)"),
       text("rotate_deg", "", "Placement rotation rx,ry,rz (x, then y, then z), degrees"),
       text("translate_mm", "", "Placement translation x,y,z in mm (applied last)"),
+  };
+}
+
+// eia and rays: synthesis, outputs, ray files.
+std::vector<SettingInfo> synthesisSettings() {
+  return {
       // Synthesis (eia, rays --for-field)
       number("vcp_mm", "", -kMaxDistanceMm, kMaxDistanceMm, "VCP distance D_VCP in front of the MLA (the near clipping plane), mm"),
       number("vcp_mm", "rays", -kMaxDistanceMm, kMaxDistanceMm, "With --for-field: VCP distance in front of the MLA, mm"),
@@ -145,6 +152,12 @@ std::vector<SettingInfo> makeTable() {
            "Write the orthoscopic QUERY rays instead (field frame, after the inverse placement; reversed display rays "
            "starting on the VCP) as a table for an external radiance field: --out FILE.npy (float32 N x 8: ox oy oz "
            "dx dy dz near far) or FILE.exr; fill in one colour per row and pass it to `inim eia --field-colors`"),
+  };
+}
+
+// view, reference, fig11 and calibrate.
+std::vector<SettingInfo> viewSettings() {
+  return {
       // view and reference: camera and pose
       text("camera_model", "", "Camera model (default: the camera file's)"),
       number("distance_mm", "", 1, kMaxDistanceMm,
@@ -235,6 +248,12 @@ std::vector<SettingInfo> makeTable() {
       number("lut_size", "", 2, 256, "Nodes per axis of the exported 3D LUT"),
       number("panel_bits", "", 0, 32, "Bits of the panel's encoded input (0: float)"),
       number("direct_checks", "", 0, kMaxCount, "Patches rendered directly to check the linear chain model"),
+  };
+}
+
+// render, capture, train, eval, query, triads, compare, lens, place, study, bench.
+std::vector<SettingInfo> otherCommandSettings() {
+  return {
       // render
       text("eye", "", "Camera position x,y,z in mm (display frame)"),
       text("look_at", "", "Point the camera looks at, mm"),
@@ -319,6 +338,12 @@ std::vector<SettingInfo> makeTable() {
       text("field_translate_mm", "", "Its placement translation, mm"),
       text("lego", "", "Lego dataset folder for radiance/train-lego (e.g. ../shared/data/lego)"),
       number("lego_iterations", "", 1, 1e8, "Training iterations of radiance/train-lego"),
+  };
+}
+
+// Numbers in the JSON files.
+std::vector<SettingInfo> fileSettings() {
+  return {
       // Keys of the JSON files (scope "file": every file format that has the key; the general
       // entry of the same key, above, holds where there is no file entry).
       // Placement (run files, scene objects, the placement page)
@@ -407,6 +432,15 @@ std::vector<SettingInfo> makeTable() {
       file("p1", -1e3, 1e3, "Tangential distortion coefficient"),
       file("p2", -1e3, 1e3, "Tangential distortion coefficient"),
   };
+}
+
+std::vector<SettingInfo> makeTable() {
+  std::vector<SettingInfo> table;
+  for (auto group : {runAndInputSettings, synthesisSettings, viewSettings, otherCommandSettings, fileSettings}) {
+    const std::vector<SettingInfo> entries = group();
+    table.insert(table.end(), entries.begin(), entries.end());
+  }
+  return table;
 }
 
 bool isNumber(const SettingInfo& info) { return !std::isnan(info.lo); }
