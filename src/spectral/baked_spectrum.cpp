@@ -11,29 +11,34 @@ BakedSpectrum::BakedSpectrum(const Spectrum& s, float scale) {
     c_ = *c * scale;
     return;
   }
-  int n = int(kLambdaMax - kLambdaMin) + 1;
-  table_.resize(n);
-  for (int i = 0; i < n; ++i) table_[i] = s(kLambdaMin + float(i)) * scale;
+  std::vector<float> values(size_t(kLambdaMax - kLambdaMin) + 1);
+  for (size_t i = 0; i < values.size(); ++i) values[i] = s(kLambdaMin + float(i)) * scale;
+  *this = BakedSpectrum(std::move(values));
 }
 
+BakedSpectrum::BakedSpectrum(std::vector<float> values)
+    : values_(std::make_shared<const std::vector<float>>(std::move(values))),
+      table_(values_->data()),
+      size_(int(values_->size())) {}
+
 float BakedSpectrum::maxValue() const {
-  return table_.empty() ? c_ : *std::max_element(table_.begin(), table_.end());
+  return size_ == 0 ? c_ : *std::max_element(table_, table_ + size_);
 }
 float BakedSpectrum::minValue() const {
-  return table_.empty() ? c_ : *std::min_element(table_.begin(), table_.end());
+  return size_ == 0 ? c_ : *std::min_element(table_, table_ + size_);
 }
 float BakedSpectrum::average() const {
-  if (table_.empty()) return c_;
+  if (size_ == 0) return c_;
   double sum = 0.0;
-  for (size_t i = 0; i + 1 < table_.size(); ++i) sum += 0.5 * (table_[i] + table_[i + 1]);
-  return float(sum / double(table_.size() - 1));
+  for (int i = 0; i + 1 < size_; ++i) sum += 0.5 * (table_[i] + table_[i + 1]);
+  return float(sum / double(size_ - 1));
 }
 float BakedSpectrum::luminance() const {
-  if (table_.empty()) return c_;
+  if (size_ == 0) return c_;
   const Spectrum& y = cie::Y();
   double num = 0.0, den = 0.0;
-  for (size_t i = 0; i < table_.size(); ++i) {
-    double w = (i == 0 || i + 1 == table_.size()) ? 0.5 : 1.0;
+  for (int i = 0; i < size_; ++i) {
+    double w = (i == 0 || i + 1 == size_) ? 0.5 : 1.0;
     double yb = y(kLambdaMin + float(i));
     num += w * table_[i] * yb;
     den += w * yb;

@@ -46,6 +46,21 @@ TEST(BakedSpectrum, TableReproducesAPiecewiseLinearSpectrum) {
   EXPECT_NEAR(b.minValue(), 0.2f, 1e-6f);
 }
 
+// Copies (which share one table: a million area lights of one emitter hold one) read the same
+// values, and map() and
+// scaled() make new tables without touching the one they came from.
+TEST(BakedSpectrum, CopiesShareTheirTableAndMapLeavesTheOriginal) {
+  const BakedSpectrum a(GaussianSpectrum(550.0f, 40.0f));
+  const BakedSpectrum copy = a;
+  const BakedSpectrum doubled = a.scaled(2.0f);
+  for (float l = 360.0f; l <= 830.0f; l += 7.3f) {
+    EXPECT_EQ(copy(l), a(l)) << l;
+    EXPECT_NEAR(doubled(l), 2.0f * a(l), 1e-6f * a(l) + 1e-30f) << l;
+  }
+  EXPECT_EQ(a.map([](float) { return 1.0f; })(500.0f), 1.0f);
+  EXPECT_EQ(a(500.0f), GaussianSpectrum(550.0f, 40.0f)(500.0f));
+}
+
 // The CMF table is cie::X/Y/Z divided by the y-bar integral; its Monte Carlo XYZ agrees with
 // the double-precision sampledToXYZ.
 TEST(CmfTable, MatchesTheCieFunctionsAndSampledToXYZ) {
