@@ -24,6 +24,7 @@
 //                          <= 100 ms on 2 cores
 //   scene/load-spheres/N   a scene description of N spheres parsed and read (10k, 100k, 1M):
 //                          linear in N; target: 1M in seconds
+//   scene/load-rectangles/100000  the same for emissive rectangles (meshes): linear too
 //   radiance/train-lego    train on the Lego scene (when its folder is given) at 200 x 200, every
 //                          8th view held out; reports the held-out PSNR; target >= 28 dB within
 //                          10 minutes

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/interrupt.h"
+#include "core/size_budget.h"
 #include "core/file_kinds.h"
 #include "core/format.h"
 #include "core/output_file.h"
@@ -669,6 +670,9 @@ struct Loader {
     }
     if (root.has("objects")) {
       std::vector<JsonObject> objs = root.objects("objects");
+      checkAllocation(file, "objects", std::to_string(objs.size()) + " objects",
+                      {{double(objs.size()), double(sizeof(Shape) + sizeof(SceneObject) + sizeof(Light))}},
+                      "the scene's objects");
       d.objects.reserve(objs.size());  // no copies of a million shapes while they are added
       d.shapes.reserve(d.shapes.size() + objs.size());
       objectOfId.reserve(objs.size());
@@ -679,18 +683,15 @@ struct Loader {
       for (size_t i = 0; i < ls.size(); ++i) parseLight(ls[i], i);
     }
     root.rejectUnknown();
-    // Emissive objects are area lights too.
+    // Emissive objects are area lights too, except the rect lights registered above (marked
+    // once: a look-up per shape in every light was quadratic in emissive meshes).
+    std::vector<char> rectLight(d.shapes.size(), 0);
+    for (const Light& l : d.lights)
+      if (l.type == LightType::Area && l.shape >= 0) rectLight[size_t(l.shape)] = 1;
     for (size_t i = 0; i < d.shapes.size(); ++i) {
       Shape& s = d.shapes[i];
       const Material& m = d.materials[s.material];
-      if (!m.emissive) continue;
-      if (s.type == ShapeType::Mesh && !d.lights.empty() && s.material >= 0) {
-        // rect lights were registered above; find whether this shape already is one
-        bool known = false;
-        for (const Light& l : d.lights)
-          if (l.type == LightType::Area && l.shape == int(i)) known = true;
-        if (known) continue;
-      }
+      if (!m.emissive || (s.type == ShapeType::Mesh && rectLight[i])) continue;
       Light l;
       l.type = LightType::Area;
       l.name = s.name;
