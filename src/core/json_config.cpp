@@ -16,6 +16,7 @@
 #include "core/format.h"
 #include "core/interrupt.h"
 #include "core/settings_table.h"
+#include "core/size_budget.h"
 
 namespace inim {
 
@@ -38,32 +39,52 @@ std::string messageText(const std::string& text) {
   return text.substr(0, cut) + "... (" + std::to_string(text.size()) + " bytes)";
 }
 
+struct DuplicateKeySeen {};
+
 // The library's own DOM builder, with the nesting counted as it goes (its parser is
 // iterative, but printing and copying a value recurse, so a deep file would overflow the
 // stack later) and every parse failure turned into an InputError naming the file and where.
 class CheckedSax {
  public:
-  CheckedSax(Json& root, const std::string& text, const std::string& name)
-      : dom_(root), text_(text), name_(name) {}
+  // Without `locateKeys` a duplicate key throws DuplicateKeySeen: finding the line of every
+  // key costs a search of the text each, so only a second pass over a file that has a
+  // duplicate does it, to name both lines.
+  CheckedSax(Json& root, const std::string& text, const std::string& name, bool locateKeys)
+      : dom_(root), text_(text), name_(name), locateKeys_(locateKeys) {}
 
-  bool null() { return dom_.null(); }
-  bool boolean(bool v) { return dom_.boolean(v); }
-  bool number_integer(Json::number_integer_t v) { return dom_.number_integer(v); }
-  bool number_unsigned(Json::number_unsigned_t v) { return dom_.number_unsigned(v); }
-  bool number_float(Json::number_float_t v, const std::string& s) { return dom_.number_float(v, s); }
-  bool string(std::string& v) { return dom_.string(v); }
-  bool binary(Json::binary_t& v) { return dom_.binary(v); }
+  bool null() { return account(kValueBytes), dom_.null(); }
+  bool boolean(bool v) { return account(kValueBytes), dom_.boolean(v); }
+  bool number_integer(Json::number_integer_t v) { return account(kValueBytes), dom_.number_integer(v); }
+  bool number_unsigned(Json::number_unsigned_t v) { return account(kValueBytes), dom_.number_unsigned(v); }
+  bool number_float(Json::number_float_t v, const std::string& s) {
+    return account(kValueBytes), dom_.number_float(v, s);
+  }
+  bool string(std::string& v) { return account(kValueBytes + heapTextBytes(v)), dom_.string(v); }
+  bool binary(Json::binary_t& v) { return account(kValueBytes + double(v.size())), dom_.binary(v); }
   bool key(std::string& k) {
-    const size_t line = lineOfKey(k);
-    if (auto [it, added] = keys_.back().emplace(k, line); !added)
+    account(kMemberBytes + heapTextBytes(k));
+    const size_t line = locateKeys_ ? lineOfKey(k) : 0;
+    if (auto [it, added] = keys_[open_ - 1].emplace(k, line); !added) {
+      if (!locateKeys_) throw DuplicateKeySeen{};
       throw InputError(name_, messageText(k), "given twice (lines " + std::to_string(it->second) + " and " +
                                                   std::to_string(line) + ")",
                        "each key once in an object (a later one would silently replace the first)");
+    }
     return dom_.key(k);
   }
-  bool start_object(std::size_t n) { return enter() && (keys_.emplace_back(), dom_.start_object(n)); }
-  bool end_object() { return --depth_, keys_.pop_back(), dom_.end_object(); }
-  bool start_array(std::size_t n) { return enter() && dom_.start_array(n); }
+  bool start_object(std::size_t n) {
+    if (!enter()) return false;
+    account(kValueBytes + kContainerBytes);
+    // The maps of closed objects are reused (no allocation per object), but not a large one:
+    // clearing costs its bucket count.
+    if (open_ == keys_.size()) keys_.emplace_back();
+    auto& keys = keys_[open_++];
+    if (keys.bucket_count() > 64) keys = {};
+    keys.clear();
+    return dom_.start_object(n);
+  }
+  bool end_object() { return --depth_, --open_, dom_.end_object(); }
+  bool start_array(std::size_t n) { return enter() && (account(kValueBytes + kContainerBytes), dom_.start_array(n)); }
   bool end_array() { return --depth_, dom_.end_array(); }
 
   // `offset` is the byte just past the offending token; `token` is that number for 406.
@@ -99,23 +120,49 @@ class CheckedSax {
     }
     return 0;
   }
+  // What the parsed document will hold in memory, counted as it is built so that a small file
+  // that expands (a million "{}") is refused at the memory limit, not by the kernel. Estimates
+  // for libstdc++: any value 16 B, doubled for a vector's growth (32 B); an object member adds a
+  // map node (32 B) with its key (32 B) and the allocator's 16 B; a container's own block 64 B;
+  // text beyond the short-string buffer its own block.
+  static constexpr double kValueBytes = 32.0, kMemberBytes = 80.0, kContainerBytes = 64.0;
+  static double heapTextBytes(const std::string& t) { return t.size() > 15 ? double(t.size()) + 17.0 : 0.0; }
+  void account(double bytes) {
+    domBytes_ += bytes;
+    if (domBytes_ > double(memoryLimitBytes()))
+      throw InputError(name_, "", formatBytes(domBytes_) + " once parsed",
+                       "a document that fits the memory limit " + formatBytes(double(memoryLimitBytes())) +
+                           " (--max-memory)");
+  }
+
   nlohmann::detail::json_sax_dom_parser<Json> dom_;
   std::vector<std::unordered_map<std::string, size_t>> keys_;  // per open object: key -> line
+  size_t open_ = 0;  // objects open (the first open_ maps of keys_ are theirs)
+  double domBytes_ = 0.0;
   size_t cursor_ = 0, line_ = 1;
   const std::string& text_;
   const std::string& name_;
+  const bool locateKeys_;
   int depth_ = 0;
 };
 
-}  // namespace
-
-Json parseJsonText(const std::string& text, const std::string& name) {
+Json parseJsonPass(const std::string& text, const std::string& name, bool locateKeys) {
   Json root;
-  CheckedSax sax(root, text, name);
+  CheckedSax sax(root, text, name, locateKeys);
   if (!Json::sax_parse(text, &sax, nlohmann::detail::input_format_t::json, /*strict=*/true,
                        /*ignore_comments=*/false))
     throw InputError(name, "", "malformed JSON", "valid JSON");
   return root;
+}
+
+}  // namespace
+
+Json parseJsonText(const std::string& text, const std::string& name) {
+  try {
+    return parseJsonPass(text, name, false);
+  } catch (const DuplicateKeySeen&) {
+    return parseJsonPass(text, name, true);  // throws, naming both lines
+  }
 }
 
 Json readJsonFile(const std::string& path) {

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/json_config.h"
+#include "core/size_budget.h"
 #include "fixtures.h"
 
 using namespace inim;
@@ -200,6 +201,27 @@ TEST(JsonConfig, DuplicateKeysAreRefusedWithBothLines) {
   EXPECT_NO_THROW(parseJsonText(R"({"a": {"x": 1}, "b": {"x": 2}, "c": "x", "x": "a"})", "ok.json"));
   // Top-level duplicates after nested objects are still seen.
   EXPECT_THROW(parseJsonText(R"({"k": {"k": 1}, "k": 2})", "top.json"), InputError);
+}
+
+// A small file that expands: 300 kB of "{}" is 100,000 objects, several MiB once parsed. The
+// parser counts what it builds and stops at the memory limit, naming the file.
+TEST(JsonConfig, ADocumentLargerThanTheMemoryLimitOnceParsedIsRefused) {
+  std::string text = "[";
+  for (int i = 0; i < 100000; ++i) text += i ? ",{}" : "{}";
+  text += "]";
+  {
+    ScopedMemoryLimit limit(4u << 20);
+    try {
+      parseJsonText(text, "many.json");
+      FAIL() << "a document of 100,000 objects parsed within 4 MiB";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), "many.json");
+      EXPECT_NE(e.value().find("once parsed"), std::string::npos) << e.value();
+      EXPECT_NE(e.expected().find("--max-memory"), std::string::npos) << e.expected();
+    }
+  }
+  ScopedMemoryLimit roomy(64u << 20);
+  EXPECT_EQ(parseJsonText(text, "many.json").size(), 100000u);
 }
 
 TEST(JsonConfig, LongKeysAndValuesAreTruncatedWithTheirLength) {
