@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "core/size_budget.h"
 #include "radiance/occupancy_grid.h"
 #include "radiance/sparse_adam.h"
 #include "radiance/spherical_harmonics.h"
@@ -51,6 +52,18 @@ void validate(const TrainingRays& rays, const TrainConfig& c) {
           std::to_string(c.resolutions[s]), "between 2 and 1024");
     check(s == 0 ? c.stageStarts[s] == 0 : c.stageStarts[s] > c.stageStarts[s - 1], "stage_starts",
           std::to_string(c.stageStarts[s]), "0 first, then increasing");
+  }
+  // Per grid vertex while training: the parameters, their gradients and Adam's two moments
+  // (density and colourStride colour floats each), the touched flag; a stage's growth holds the
+  // grid it resamples beside the new one.
+  const double floatsPerVertex = 1.0 + 3.0 * shCount(c.shDegree);
+  for (size_t s = 0; s < c.resolutions.size(); ++s) {
+    const glm::ivec3 res = VoxelGrid::resolutionFor(c.boxLo, c.boxHi, c.resolutions[s]);
+    const double vertices = double(res.x) * res.y * res.z;
+    checkAllocation("", "resolutions", std::to_string(c.resolutions[s]) + " (" + std::to_string(res.x) + " x " +
+                                           std::to_string(res.y) + " x " + std::to_string(res.z) + " vertices)",
+                    {{vertices, 4.0 * 4.0 * floatsPerVertex + 1.0}, {vertices, 4.0 * floatsPerVertex}},
+                    "training stage " + std::to_string(s + 1) + "'s grid");
   }
   check(c.initAlpha > 0.0f && c.initAlpha < 1.0f, "init_alpha", std::to_string(c.initAlpha), "in (0, 1)");
   check(c.lrDensity >= 0.0f && c.lrColor >= 0.0f && c.lrFinalFactor > 0.0f, "lr", "negative",

@@ -89,3 +89,25 @@ TEST(Training, RejectsBadConfig) {
   rays.rgb.pop_back();
   EXPECT_THROW(train(g, rays, synthetic::config()), InputError);
 }
+
+// A grid of 1024 vertices a side is about 480 GiB while training (parameters, gradients and
+// Adam's moments): refused at the memory limit, naming the stage's resolution, before anything
+// is allocated.
+TEST(Training, AGridBeyondTheMemoryLimitIsRefusedBeforeAllocating) {
+  TrainingRays rays;
+  synthetic::render(0, 1, 8, rays);
+  TrainConfig cfg = synthetic::config();
+  cfg.shDegree = 2;
+  cfg.resolutions = {64, 1024};
+  cfg.stageStarts = {0, 10};
+  VoxelGrid g;
+  try {
+    train(g, rays, cfg);
+    FAIL() << "a 1024^3 training grid accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "resolutions");
+    EXPECT_EQ(e.value().rfind("1024 (", 0), 0u) << e.value();
+    EXPECT_NE(e.expected().find("memory limit"), std::string::npos) << e.expected();
+  }
+  EXPECT_TRUE(g.density.empty() && g.color.empty());  // nothing trained, nothing allocated
+}
