@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     return std::fprintf(stderr, "inim: error: %s (--help lists the options)\n", e.what()), inim::kExitBadInput;
   } catch (const inim::InputError& e) {
-    std::fprintf(stderr, "inim: error: %s\n", inim::cli::asCommandLineError(e).what());
+    std::fprintf(stderr, "inim: error: %s\n", inim::withOutputNames(inim::cli::asCommandLineError(e).what()).c_str());
     return inim::kExitBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "inim: failed: %s\n", inim::withOutputNames(e.what()).c_str());

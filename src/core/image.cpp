@@ -87,11 +87,20 @@ void writeImage(const Image& img, const std::string& path, const ImageNumbers& n
   spec.attribute("DateTime", "");
   if (!out->open(path, spec)) throw std::runtime_error("cannot open " + path + ": " + out->geterror());
   bool ok;
-  if (isExr) {
-    ok = writeRowBands(*out, img.width, img.height, img.numChannels(), OIIO::TypeDesc::FLOAT, img.data.data());
-  } else {
-    const std::vector<unsigned char> bytes = toBytes(img.data);
-    ok = writeRowBands(*out, img.width, img.height, img.numChannels(), OIIO::TypeDesc::UINT8, bytes.data());
+  try {
+    if (isExr) {
+      ok = writeRowBands(*out, img.width, img.height, img.numChannels(), OIIO::TypeDesc::FLOAT, img.data.data());
+    } else {
+      const std::vector<unsigned char> bytes = toBytes(img.data);
+      ok = writeRowBands(*out, img.width, img.height, img.numChannels(), OIIO::TypeDesc::UINT8, bytes.data());
+    }
+  } catch (...) {
+    // A write stopped between bands (Ctrl-C): the writer closes the unfinished file as it goes,
+    // and libpng prints "libpng error: ..." about the rows never given; the caller's message
+    // (or exit status) is the one that counts, and its OutputSet removes the partial file.
+    LibraryStderrSilenced quiet(path);
+    out.reset();
+    throw;
   }
   if (!ok || !out->close()) throw std::runtime_error("cannot write " + path + ": " + out->geterror());
 }

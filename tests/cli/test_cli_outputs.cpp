@@ -148,6 +148,7 @@ TEST_P(CliInterrupt, StoppedWhileWritingExitsCleanlyAndKeepsTheOldOutputs) {
   ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << WTERMSIG(status) << "\n" << readBytes(log);
   EXPECT_EQ(WEXITSTATUS(status), 128 + sig) << readBytes(log);
   EXPECT_NE(readBytes(log).find("interrupted"), std::string::npos) << readBytes(log);
+  EXPECT_EQ(readBytes(log).find("libpng"), std::string::npos) << readBytes(log);  // one message, inim's
   EXPECT_EQ(temporaries(dir), std::vector<std::string>{});
   for (size_t i = 0; i < kOutputs.size(); ++i)
     EXPECT_TRUE(readBytes(dir + "/" + kOutputs[i]) == old[i]) << kOutputs[i] << " changed";
@@ -212,6 +213,20 @@ TEST(CliOutputs, KilledRunsTemporariesAreRemovedByTheNextRunLiveOnesKept) {
   EXPECT_EQ(readBytes(dir + "/" + live), "in progress");
   EXPECT_EQ(temporaries(dir), std::vector<std::string>{live});
   EXPECT_TRUE(fs::exists(dir + "/small.exr") && fs::exists(dir + "/small.png") && fs::exists(dir + "/small.sdf"));
+  fs::remove_all(dir);
+}
+
+// A write that fails part-way, as on a full disk: the shell's file-size limit (ulimit -f, with
+// SIGXFSZ ignored, so that write() fails with EFBIG as it would with ENOSPC) stops the writes
+// past 1 MB. The run exits 2 naming the file asked for, not its temporary, and leaves no output.
+TEST(CliOutputs, AWriteThatFailsPartWayNamesTheFileAskedForAndLeavesNothing) {
+  const std::string dir = folder("full");
+  CliResult r = runInimBinary("trap '' XFSZ; ulimit -f 2048; exec " + binary(), eiaArgs(largeDisplay(), dir));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find(dir + "/eia."), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(".tmp"), std::string::npos) << r.output;
+  EXPECT_EQ(temporaries(dir), std::vector<std::string>{});
+  for (const auto& f : kOutputs) EXPECT_FALSE(fs::exists(dir + "/" + f)) << f;
   fs::remove_all(dir);
 }
 
