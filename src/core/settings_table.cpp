@@ -370,6 +370,14 @@ std::vector<SettingInfo> fileSettings() {
       file("conic", -1e3, 1e3, "Conic constant of a surface"),
       file("aperture_mm", 0, 1e3, "Clear aperture diameter, mm: a lenslet's or a lens surface's"),
       file("substrate_thickness_mm", 1e-6, 1e3, "MLA substrate thickness, mm"),
+      // Displays: optical stacks (optics/README.md)
+      file("asphere", -1e6, 1e6, "Even-asphere coefficients of r^4, r^6, ... of a stack surface (each element)"),
+      file("lattice_offset_mm", -10, 10, "A stack layer's lattice offset against the panel centre, mm (each element)"),
+      file("count", 1, 1 << 20, "Lenslets (holes, cells) of a stack layer's lattice: [columns, rows] (each element)"),
+      file("hole_mm", 1e-4, 10, "Hole size of an aperture-array layer, mm"),
+      file("wall_mm", 0, 10, "Wall width of a barrier layer, mm"),
+      file("wall_reflectance", 0, 1, "Reflectance of a barrier layer's walls (0: absorbing)"),
+      file("panel_radius_mm", -kMaxDistanceMm, kMaxDistanceMm, "Radius of a curved panel, mm"),
       file("generation_gap_mm", 1e-3, 1e3, "Panel to pinhole plane gap of the generation model, mm"),
       file("reconstruction_gap_mm", 1e-3, 1e3, "Panel to MLA reference plane gap of the reconstruction, mm"),
       // Glasses
@@ -394,7 +402,7 @@ std::vector<SettingInfo> fileSettings() {
       file("max_depth", 0, 1000, "Maximum scattering depth"),
       file("rr_depth", 0, 1000, "Depth at which Russian roulette starts"),
       file("id", 0, 2147483647, "Object id (unique in the scene)"),
-      file("height_mm", 1e-6, kMaxReachMm, "A cylinder's height, mm"),
+      file("height_mm", 1e-6, kMaxReachMm, "A height, mm: a cylinder's, a stack's barrier walls'"),
       file("position_mm", -kMaxReachMm, kMaxReachMm, "A light's or camera's position, mm (each element)"),
       file("look_at_mm", -kMaxReachMm, kMaxReachMm, "The point a light or camera looks at, mm (each element)"),
       file("direction", -1e6, 1e6, "A direction (each element; normalised when read)"),
@@ -500,7 +508,10 @@ void checkSettingText(const SettingInfo& info, const std::string& text, const st
 }
 
 std::string allowedText(const SettingInfo& info) {
-  return isNumber(info) ? rangeText(info) : info.choices.empty() ? "" : "{" + std::string(info.choices) + "}";
+  if (isNumber(info)) return rangeText(info);
+  if (info.choices.empty()) return "";
+  std::string text = "{";  // appended, not "{" + string: GCC 12 warns falsely (-Wrestrict) on that
+  return text.append(info.choices).append("}");
 }
 
 std::string settingsMarkdown() {

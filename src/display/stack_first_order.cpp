@@ -1,0 +1,114 @@
+#include "display/stack_first_order.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/format.h"
+#include "spectral/dispersion.h"
+
+namespace inim {
+
+namespace {
+
+constexpr double kDegreesPerRadian = 57.295779513082320876798;
+
+struct Matrix2 {
+  double a = 1, b = 0, c = 0, d = 1;
+  Matrix2 then(const Matrix2& m) const {  // m applied after this
+    return {m.a * a + m.b * c, m.a * b + m.b * d, m.c * a + m.d * c, m.c * b + m.d * d};
+  }
+};
+
+Matrix2 refraction(double n1, double n2, double curvature) { return {1.0, 0.0, -(n2 - n1) * curvature, 1.0}; }
+Matrix2 transfer(double thickness, double n) { return {1.0, thickness / n, 0.0, 1.0}; }
+
+double layerIndex(const OpticalStack& s, const StackLayer& l, double lambdaNm) {
+  if (l.material.empty()) return 1.0;
+  const MaterialCatalog& catalog = MaterialCatalog::standard();
+  if (!catalog.hasDielectric(l.material))
+    throw InputError(s.file, l.keyPath + ".material", "\"" + l.material + "\"", "a dielectric of the material catalog");
+  return catalog.dielectric(l.material)->n(float(lambdaNm));
+}
+
+double backCurvature(const StackLayer& l) { return l.kind == StackLayer::Kind::LensArray ? l.back.curvature() : 0.0; }
+double frontCurvature(const StackLayer& l) { return l.kind == StackLayer::Kind::LensArray ? l.front.curvature() : 0.0; }
+
+double firstLatticePitch(const OpticalStack& s) {
+  for (const StackLayer& l : s.layers)
+    if (l.kind == StackLayer::Kind::LensArray) return l.pitchMm;
+  for (const StackLayer& l : s.layers)
+    if (l.pitchMm > 0.0) return l.pitchMm;
+  return 0.0;
+}
+
+}  // namespace
+
+StackFirstOrder stackFirstOrder(const OpticalStack& s, double wavelengthNm) {
+  // The panel emits into the first layer's medium. Between two layers the light leaves the one
+  // through its front surface into air and enters the next through its back surface, with no
+  // air between: two layers in contact are a cemented interface, paraxially the same.
+  Matrix2 m;
+  double n = s.layers.empty() ? 1.0 : layerIndex(s, s.layers[0], wavelengthNm);
+  const double n0 = n;
+  for (size_t i = 0; i < s.layers.size(); ++i) {
+    const StackLayer& l = s.layers[i];
+    const double nl = layerIndex(s, l, wavelengthNm);
+    if (i > 0) m = m.then(refraction(n, 1.0, frontCurvature(s.layers[i - 1]))).then(refraction(1.0, nl, backCurvature(l)));
+    m = m.then(transfer(l.thicknessMm, nl));
+    n = nl;
+  }
+  if (!s.layers.empty()) m = m.then(refraction(n, 1.0, frontCurvature(s.layers.back())));
+
+  StackFirstOrder fo;
+  fo.wavelengthNm = wavelengthNm;
+  fo.a = m.a, fo.b = m.b, fo.c = m.c, fo.d = m.d;
+  fo.panelIndex = n0;
+  fo.lensletDepthMm = s.totalThicknessMm();
+  fo.pitchMm = firstLatticePitch(s);
+  fo.afocal = std::fabs(m.c) < 1e-15;
+  if (fo.afocal) return fo;
+  const double z = fo.lensletDepthMm;
+  fo.focalLengthMm = -1.0 / m.c;
+  fo.rearFocalZMm = z - m.a / m.c;
+  fo.rearPrincipalZMm = z + (1.0 - m.a) / m.c;
+  fo.frontPrincipalZMm = n0 * (m.d - 1.0) / m.c;
+  fo.frontFocalZMm = n0 * m.d / m.c;
+  fo.reducedGapMm = fo.frontPrincipalZMm / n0;
+  const double vergence = 1.0 / fo.focalLengthMm - 1.0 / fo.reducedGapMm;  // P - n0 / g
+  if (std::fabs(vergence) > 1e-15) fo.referencePlaneMm = 1.0 / vergence;
+  if (fo.reducedGapMm > 0.0 && fo.pitchMm > 0.0)
+    fo.viewingAngleDeg = 2.0 * std::atan(fo.pitchMm / (2.0 * fo.reducedGapMm)) * kDegreesPerRadian;
+  return fo;
+}
+
+std::string stackText(const OpticalStack& s, const StackFirstOrder& fo) {
+  std::string t = formatText("Optical stack (%zu layers, panel at z = 0, + toward the viewer):\n", s.layers.size());
+  for (size_t i = 0; i < s.layers.size(); ++i) {
+    const StackLayer& l = s.layers[i];
+    t += formatText("  %-10s z %8.4f .. %8.4f mm  %s", layerKindName(l.kind), s.layerBackZ(i), s.layerBackZ(i + 1),
+                    l.material.empty() ? "air" : l.material.c_str());
+    if (l.kind == StackLayer::Kind::LensArray)
+      t += formatText("  pitch %g mm, back R %g, front R %g mm", l.pitchMm, l.back.radiusMm, l.front.radiusMm);
+    if (l.kind == StackLayer::Kind::Apertures) t += formatText("  pitch %g mm, holes %g mm", l.pitchMm, l.holeMm);
+    if (l.kind == StackLayer::Kind::Barriers) t += formatText("  pitch %g mm, walls %g mm wide", l.pitchMm, l.wallMm);
+    t += "\n";
+  }
+  if (s.curvature)
+    t += formatText("  curved: lenslet centres on a %s of radius %g mm\n",
+                    s.curvature->shape == StackCurvature::Shape::Sphere ? "sphere" : "cylinder", s.curvature->radiusMm);
+  t += formatText("First order of one lenslet column at %.2f nm (docs/design.md):\n", fo.wavelengthNm);
+  if (fo.afocal) return t + "  afocal (no power): no focal length, principal planes or reference plane\n";
+  t += formatText("  effective focal length f = -1/C       %.5f mm\n", fo.focalLengthMm);
+  t += formatText("  principal planes H, H'                z = %.5f, %.5f mm\n", fo.frontPrincipalZMm, fo.rearPrincipalZMm);
+  t += formatText("  focal points F, F'                    z = %.5f, %.5f mm\n", fo.frontFocalZMm, fo.rearFocalZMm);
+  t += formatText("  gap g (panel to H, reduced)           %.5f mm\n", fo.reducedGapMm);
+  if (fo.referencePlaneMm)
+    t += formatText("  reference image plane L (from H')     %.4f mm (%s)\n", *fo.referencePlaneMm,
+                    *fo.referencePlaneMm > 0.0 ? "real" : "virtual");
+  else
+    t += "  reference image plane L               at infinity (g = f)\n";
+  t += formatText("  viewing angle psi = 2 atan(P/2g)      %.3f deg\n", fo.viewingAngleDeg);
+  return t;
+}
+
+}  // namespace inim
