@@ -85,16 +85,40 @@ static void checkMaterial(const Display& d, const std::string& key, const std::s
                    "a dielectric of the material catalog: " + known);
 }
 
-Display loadDisplay(const std::string& path) {
+// "stack" in place of "mla" and "reconstruction_gap_mm": the stack places the panel.
+static void readStack(const JsonObject& o, Display& d, DisplayUse use) {
+  if (o.has("mla") || o.has("reconstruction_gap_mm"))
+    o.fail(o.has("mla") ? "mla" : "reconstruction_gap_mm", "given with \"stack\"",
+           "either a stack (which places the panel) or an mla with its reconstruction_gap_mm");
+  d.stack = parseOpticalStack(o.object("stack"), d.panel.widthMm(), d.panel.heightMm());
+  std::string why;
+  if (const std::optional<StackAsMla> m = mlaFromStack(*d.stack, why)) {
+    d.mla = m->mla;
+    d.reconstructionGapMm = checkGapMm(m->gapMm, d.file, "stack (panel to the lenslets' principal plane)");
+    return;
+  }
+  if (use == DisplayUse::Trace)
+    o.fail("stack", why,
+           "optics the ray tracer models so far: air gaps, then one lens array with a flat face and one convex "
+           "cap (`inim display info` analyses any stack)");
+  d.stackOnly = true;
+}
+
+Display loadDisplay(const std::string& path, DisplayUse use) {
   Json j = readJsonFile(path);
   JsonObject o(j, path, "");
   Display d;
   d.file = path;
   d.name = o.string("name");
   d.panel = readPart<Panel>(o, "panel", "panels", parsePanel, loadPanel);
-  d.mla = readPart<Mla>(o, "mla", "mlas", parseMla, loadMla);
-  d.generationGapMm = checkGapMm(o.number("generation_gap_mm"), path, "generation_gap_mm");
-  d.reconstructionGapMm = checkGapMm(o.number("reconstruction_gap_mm"), path, "reconstruction_gap_mm");
+  if (o.has("stack")) {
+    readStack(o, d, use);
+    d.generationGapMm = checkGapMm(o.number("generation_gap_mm"), path, "generation_gap_mm");
+  } else {
+    d.mla = readPart<Mla>(o, "mla", "mlas", parseMla, loadMla);
+    d.generationGapMm = checkGapMm(o.number("generation_gap_mm"), path, "generation_gap_mm");
+    d.reconstructionGapMm = checkGapMm(o.number("reconstruction_gap_mm"), path, "reconstruction_gap_mm");
+  }
   readPair(o, "ei_px", d.eiWidthPx, d.eiHeightPx, true);
   readPair(o, "ei_count", d.eiCols, d.eiRows, false);
   std::string layout = o.choice("layout", {"parallel", "toed-in", "lens-grid"}, "parallel");
@@ -107,6 +131,7 @@ Display loadDisplay(const std::string& path) {
     d.viewingDistanceMm = o.positive("viewing_distance_mm");
   d.assumptions = readAssumptions(o);
   o.rejectUnknown();
+  if (d.stackOnly) return d;
   checkMaterial(d, "mla.material", d.mla.material, d.mla.file);
   if (d.panel.coverGlass) checkMaterial(d, "panel.cover_glass.material", d.panel.coverGlass->material, d.panel.file);
   (void)computeLayout(d);  // validates the EI layout against the panel

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "display/mla.h"
+#include "display/optical_stack.h"
 #include "display/panel.h"
 
 namespace inim {
@@ -35,13 +36,22 @@ struct Display {
   EiLayoutKind layout = EiLayoutKind::Parallel;
   std::optional<double> viewingDistanceMm;  // required for toed-in; analysis otherwise
   std::vector<std::string> assumptions;
+  // The optical stack the file gives in place of "mla" (docs/formats.md §3.6a). When it is one
+  // lens array behind air, `mla` and reconstructionGapMm are derived from it and every stage
+  // uses them; otherwise only a description was asked for (`stackOnly`: mla is empty).
+  std::optional<OpticalStack> stack;
+  bool stackOnly = false;
 };
+
+// What a display is loaded for: every stage (Trace) needs optics the ray tracer models;
+// `display info` (Describe) also takes stacks it does not model yet, to analyse them.
+enum class DisplayUse { Trace, Describe };
 
 // Reads a display description. "panel" and "mla" are either inline objects, a file path
 // ending in .json (relative to the display file), or a catalog name resolved to
 // optics/panels/<name>.json or optics/mlas/<name>.json under the data folder.
 // Validates the layout too (computeLayout), so a display that loads can generate rays.
-Display loadDisplay(const std::string& path);
+Display loadDisplay(const std::string& path, DisplayUse use = DisplayUse::Trace);
 // optics/displays/paper-prototype.json.
 std::string defaultDisplayPath();
 // `path`, or the default display when it is empty.

@@ -6,6 +6,7 @@
 
 #include "core/format.h"
 #include "display/cover_glass.h"
+#include "display/stack_first_order.h"
 #include "spectral/dispersion.h"
 
 namespace inim {
@@ -371,7 +372,47 @@ std::string toText(const DisplayInfo& r) {
   return s;
 }
 
-Json displayInfoJson(const Display& d) { return toJson(derive(d)); }
-std::string displayInfoText(const Display& d) { return toText(derive(d)); }
+namespace {
+
+Json stackJson(const OpticalStack& s, const StackFirstOrder& fo) {
+  Json layers = Json::array();
+  for (size_t i = 0; i < s.layers.size(); ++i)
+    layers.push_back({{"type", layerKindName(s.layers[i].kind)},
+                      {"z_mm", {s.layerBackZ(i), s.layerBackZ(i + 1)}},
+                      {"material", s.layers[i].material.empty() ? "air" : s.layers[i].material}});
+  Json j = {{"layers", layers}, {"wavelength_nm", fo.wavelengthNm}, {"afocal", fo.afocal}};
+  if (fo.afocal) return j;
+  j["focal_length_mm"] = fo.focalLengthMm;
+  j["principal_planes_z_mm"] = {fo.frontPrincipalZMm, fo.rearPrincipalZMm};
+  j["focal_points_z_mm"] = {fo.frontFocalZMm, fo.rearFocalZMm};
+  j["reduced_gap_mm"] = fo.reducedGapMm;
+  j["reference_plane_mm"] = fo.referencePlaneMm ? Json(*fo.referencePlaneMm) : Json(nullptr);
+  j["viewing_angle_deg"] = fo.viewingAngleDeg;
+  return j;
+}
+
+// A display whose stack is described only: the panel and the stack.
+std::string stackOnlyText(const Display& d) {
+  return formatText("%s (%s)\n  panel %d x %d px, %.4f mm pixels\n  ray tracing: not yet for this stack (only "
+                    "described and analysed here)\n",
+                    d.name.c_str(), d.file.c_str(), d.panel.widthPx, d.panel.heightPx, d.panel.pixelPitchMm) +
+         stackText(*d.stack, stackFirstOrder(*d.stack));
+}
+
+}  // namespace
+
+Json displayInfoJson(const Display& d) {
+  if (d.stackOnly) return {{"name", d.name}, {"file", d.file}, {"stack", stackJson(*d.stack, stackFirstOrder(*d.stack))}};
+  Json j = toJson(derive(d));
+  if (d.stack) j["stack"] = stackJson(*d.stack, stackFirstOrder(*d.stack));
+  return j;
+}
+
+std::string displayInfoText(const Display& d) {
+  if (d.stackOnly) return stackOnlyText(d);
+  std::string text = toText(derive(d));
+  if (d.stack) text += "\n" + stackText(*d.stack, stackFirstOrder(*d.stack));
+  return text;
+}
 
 }  // namespace inim

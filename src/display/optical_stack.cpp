@@ -278,4 +278,38 @@ OpticalStack stackFromMla(const Mla& mla, double gapMm) {
   return s;
 }
 
+std::optional<StackAsMla> mlaFromStack(const OpticalStack& s, std::string& why) {
+  const auto lens = std::find_if(s.layers.begin(), s.layers.end(),
+                                 [](const StackLayer& l) { return l.kind == StackLayer::Kind::LensArray; });
+  why.clear();
+  if (s.curvature || s.panelRadiusMm) why = "a curved array or panel";
+  else if (s.lensArrayCount() != 1) why = formatText("%d lens arrays", s.lensArrayCount());
+  else if (lens + 1 != s.layers.end()) why = std::string("a ") + layerKindName(lens[1].kind) + " layer in front of the lens array";
+  else if (std::any_of(s.layers.begin(), lens, [](const StackLayer& l) { return l.kind != StackLayer::Kind::Gap; }))
+    why = "a layer other than an air gap between the panel and the lens array";
+  if (!why.empty()) return std::nullopt;
+  const StackLayer& l = *lens;
+  const bool capFront = l.back.isPlane() && l.front.radiusMm < 0.0 && l.front.asphereMm.empty();
+  const bool capBack = l.front.isPlane() && l.back.radiusMm > 0.0 && l.back.asphereMm.empty();
+  if (!capFront && !capBack) why = "lenslets other than a flat face and one convex spherical or conic cap";
+  else if (l.offsetXMm != 0.0 || l.offsetYMm != 0.0) why = "a lattice offset";
+  else if (l.cols) why = "a lenslet count (the display's ei_count sets it)";
+  if (!why.empty()) return std::nullopt;
+  StackAsMla r;
+  r.mla.name = "lens array of " + s.file;
+  r.mla.file = s.file;
+  r.mla.lattice = l.lattice;
+  r.mla.pitchMm = l.pitchMm;
+  r.mla.radiusMm = std::fabs(capFront ? l.front.radiusMm : l.back.radiusMm);
+  r.mla.conic = capFront ? l.front.conic : l.back.conic;
+  r.mla.aperture = l.aperture;
+  r.mla.apertureMm = l.apertureMm;
+  r.mla.substrateThicknessMm = l.thicknessMm;
+  r.mla.material = l.material;
+  r.mla.orientation = capFront ? Mla::Orientation::CurvedTowardViewer : Mla::Orientation::CurvedTowardPanel;
+  const double n = MaterialCatalog::standard().dielectric(l.material)->n(float(kLambdaDNm));
+  r.gapMm = s.layerBackZ(s.layers.size() - 1) + (capFront ? l.thicknessMm / n : 0.0);  // H, as stackFromMla
+  return r;
+}
+
 }  // namespace inim

@@ -39,7 +39,9 @@ struct StackLayer {
   // Lattice of lens arrays, aperture arrays and barriers.
   Mla::Lattice lattice = Mla::Lattice::Square;
   double pitchMm = 0.0;
-  double offsetXMm = 0.0, offsetYMm = 0.0;  // a lattice point's position against the panel centre
+  // The lattice's shift from where the display's EI layout centres its lenslets (each EI
+  // behind its lenslet).
+  double offsetXMm = 0.0, offsetYMm = 0.0;
   std::optional<int> cols, rows;    // lenslets (holes, cells); unbounded when not given
   // Lens arrays.
   StackSurface back, front;
@@ -87,5 +89,15 @@ OpticalStack parseOpticalStack(const JsonObject& stack, double panelWidthMm, dou
 // panel-side principal plane lies at gapMm from the panel, as the display's gaps are measured.
 // The MLA's focal length decides R when the file gives no radius (R = (n_d - 1) f).
 OpticalStack stackFromMla(const Mla& mla, double gapMm);
+
+// The other way: the MLA (and the panel-to-H gap, mm) a stack is, when it is what the ray
+// tracer of today models: air gaps, then one lens array with a flat face and one convex
+// spherical or conic cap, nothing in front of it, flat, on the layout's lenslet centres.
+// nullopt otherwise, with `why` saying what is beyond that.
+struct StackAsMla {
+  Mla mla;
+  double gapMm = 0.0;
+};
+std::optional<StackAsMla> mlaFromStack(const OpticalStack& stack, std::string& why);
 
 }  // namespace inim

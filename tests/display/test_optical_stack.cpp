@@ -7,10 +7,12 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "display/display.h"
 #include "display/display_info.h"
 #include "display/optical_stack.h"
 #include "display/stack_first_order.h"
+#include "fixtures.h"
 #include "spectral/dispersion.h"
 
 namespace inim {
@@ -173,6 +175,63 @@ TEST(OpticalStack, PinholeAndBarrierLayersLoadAndHaveNoPower) {
   EXPECT_DOUBLE_EQ(s.totalThicknessMm(), 5.01);
   EXPECT_TRUE(stackFirstOrder(s).afocal);
   EXPECT_NE(stackText(s, stackFirstOrder(s)).find("afocal"), std::string::npos);
+}
+
+// The prototype's display file with "stack" in place of "mla" and "reconstruction_gap_mm".
+std::string prototypeWithStack(const std::string& name, const Json& stack) {
+  Json j = readJsonFile(defaultDisplayPath());
+  j.erase("mla");
+  j.erase("reconstruction_gap_mm");
+  j["panel"] = "sony-xperia-1-ii";
+  j["stack"] = stack;
+  return fixtures::scratchFile(name, j.dump(2));
+}
+
+// The prototype's MLA written as a stack loads for every stage as the same MLA, at the gap its
+// layers give; written back as a stack it is the same layers.
+TEST(OpticalStack, ADisplayFileWithOneLensArrayIsTodaysMla) {
+  const Display legacy = loadDisplay(defaultDisplayPath());
+  const double n = nOf("PMMA");
+  const double gapLayer = 4.0 - 1.5 / n;  // H 4 mm from the panel, as the prototype's gap
+  const Json stack = Json::parse(R"({"layers": [{"type": "gap", "thickness_mm": )" + formatText("%.17g", gapLayer) +
+                                 R"(}, {"type": "lens_array", "pitch_mm": 1.0, "material": "PMMA", "thickness_mm": 1.5,
+                                 "front": {"radius_mm": -1.62}}]})");
+  const Display d = loadDisplay(prototypeWithStack("one_layer.json", stack));
+  ASSERT_TRUE(d.stack.has_value());
+  EXPECT_FALSE(d.stackOnly);
+  EXPECT_NEAR(d.reconstructionGapMm, legacy.reconstructionGapMm, 1e-12);
+  EXPECT_EQ(d.generationGapMm, legacy.generationGapMm);
+  EXPECT_EQ(d.mla.pitchMm, legacy.mla.pitchMm);
+  EXPECT_EQ(*d.mla.radiusMm, *legacy.mla.radiusMm);
+  EXPECT_EQ(d.mla.substrateThicknessMm, legacy.mla.substrateThicknessMm);
+  EXPECT_EQ(d.mla.orientation, legacy.mla.orientation);
+  EXPECT_EQ(d.mla.aperture, legacy.mla.aperture);
+  const OpticalStack back = stackFromMla(d.mla, d.reconstructionGapMm);
+  EXPECT_NEAR(back.layers[0].thicknessMm, gapLayer, 1e-12);
+  EXPECT_EQ(back.layers[1].front.radiusMm, -1.62);
+  EXPECT_NE(displayInfoText(d).find("Optical stack (2 layers"), std::string::npos);
+  EXPECT_NEAR(displayInfoJson(d)["stack"]["reduced_gap_mm"].get<double>(), 4.0, 1e-12);
+}
+
+// A compound stack is analysed by `display info` (Describe) and refused by every stage (Trace)
+// until the ray tracer models it; "mla" beside "stack" is an error either way.
+TEST(OpticalStack, ACompoundStackIsDescribedButNotYetTraced) {
+  const Json stack = Json::parse(R"({"layers": [{"type": "gap", "thickness_mm": 3},
+      {"type": "lens_array", "pitch_mm": 1.0, "material": "PMMA", "thickness_mm": 1.5, "front": {"radius_mm": -1.62}},
+      {"type": "gap", "thickness_mm": 1},
+      {"type": "lens_array", "pitch_mm": 1.0, "material": "PMMA", "thickness_mm": 1.5, "back": {"radius_mm": 1.62}}]})");
+  const std::string file = prototypeWithStack("compound.json", stack);
+  EXPECT_EQ(fixtures::expectInputError([&] { loadDisplay(file); }).key(), "stack");
+  const Display d = loadDisplay(file, DisplayUse::Describe);
+  EXPECT_TRUE(d.stackOnly);
+  const std::string text = displayInfoText(d);
+  EXPECT_NE(text.find("effective focal length"), std::string::npos) << text;
+  EXPECT_NE(text.find("not yet"), std::string::npos) << text;
+  EXPECT_FALSE(displayInfoJson(d)["stack"]["afocal"].get<bool>());
+  Json both = readJsonFile(file);
+  both["mla"] = "fresnel-630";
+  const std::string bad = fixtures::scratchFile("both.json", both.dump());
+  EXPECT_EQ(fixtures::expectInputError([&] { loadDisplay(bad, DisplayUse::Describe); }).key(), "mla");
 }
 
 }  // namespace
