@@ -1,0 +1,345 @@
+#include "mla_optics/stack_tracer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "core/error.h"
+#include "core/format.h"
+#include "mla_optics/real_mla.h"
+#include "spectral/dispersion.h"
+
+namespace inim {
+
+namespace {
+
+constexpr double kSqrt3 = 1.7320508075688772;
+constexpr double kEps = 1e-9;        // mm: a new ray starts this far along its direction
+constexpr double kBisectTol = 1e-13;  // mm along the ray
+constexpr double kNone = std::numeric_limits<double>::infinity();
+
+struct Lattice {
+  bool hex = false;
+  double pitch = 1.0, ox = 0.0, oy = 0.0;
+  // Centre of the cell holding (x, y): the nearest lattice point.
+  void centre(double x, double y, double& cx, double& cy) const {
+    cx = ox, cy = oy;
+    if (!hex) {
+      cx = ox + std::round((x - ox) / pitch) * pitch;
+      cy = oy + std::round((y - oy) / pitch) * pitch;
+      return;
+    }
+    const double rowH = pitch * kSqrt3 / 2.0;
+    const double l0 = std::floor((y - oy) / rowH);
+    double best = kNone;
+    for (double l = l0; l <= l0 + 1.0; l += 1.0) {  // the two nearest rows hold the nearest point
+      const double shift = std::fmod(std::fabs(l), 2.0) == 1.0 ? pitch / 2.0 : 0.0;
+      const double px = ox + shift + std::round((x - ox - shift) / pitch) * pitch, py = oy + l * rowH;
+      const double d2 = (px - x) * (px - x) + (py - y) * (py - y);
+      if (d2 < best) best = d2, cx = px, cy = py;
+    }
+  }
+};
+
+Lattice latticeOf(const StackLayer& l, double originX, double originY) {
+  return {l.lattice == Mla::Lattice::Hex, l.pitchMm, originX + l.offsetXMm, originY + l.offsetYMm};
+}
+
+// Unit normals of a cell's sides (square: 4, hex with vertical flats: 6); each side lies at
+// half the pitch from the centre.
+int cellSides(bool hex, std::array<Vec3d, 6>& n) {
+  if (!hex) {
+    n = {Vec3d(1, 0, 0), Vec3d(-1, 0, 0), Vec3d(0, 1, 0), Vec3d(0, -1, 0), Vec3d(0), Vec3d(0)};
+    return 4;
+  }
+  for (int i = 0; i < 6; ++i) n[i] = Vec3d(std::cos(i * M_PI / 3.0), std::sin(i * M_PI / 3.0), 0.0);
+  return 6;
+}
+
+// Is cell-local (x, y) inside a hole of `shape` and size `size` (square side, circle diameter,
+// hex flat to flat with vertical flats)?
+bool insideShape(Mla::Aperture shape, double size, double x, double y) {
+  const double h = size / 2.0;
+  switch (shape) {
+    case Mla::Aperture::Circle: return x * x + y * y <= h * h;
+    case Mla::Aperture::Square: return std::fabs(x) <= h && std::fabs(y) <= h;
+    case Mla::Aperture::Hex: break;
+  }
+  std::array<Vec3d, 6> n;
+  cellSides(true, n);
+  for (const Vec3d& e : n)
+    if (e.x * x + e.y * y > h) return false;
+  return true;
+}
+
+double sagSlope(const StackSurface& s, double r) {
+  const double c = s.curvature();
+  const double q = 1.0 - (1.0 + s.conic) * c * c * r * r;
+  double slope = q > 0.0 ? c * r / std::sqrt(q) : 0.0;
+  double rp = r * r * r;
+  for (size_t i = 0; i < s.asphereMm.size(); ++i) slope += s.asphereMm[i] * double(2 * i + 4) * rp, rp *= r * r;
+  return slope;
+}
+
+Vec3d reflectDir(const Vec3d& d, const Vec3d& n) { return d - 2.0 * glm::dot(d, n) * n; }
+
+}  // namespace
+
+struct StackTracer::Boundary {
+  double z = 0.0;                 // the plane (a surface's vertex plane)
+  std::optional<StackSurface> surface;  // none: the plane itself
+  Lattice lattice;
+  double rClamp = 0.0;            // the clear aperture's radius: flat land beyond it
+  double zMin = 0.0, zMax = 0.0;  // the slab the surface fills
+  // An aperture sheet of no thickness lies on this boundary: rays pass only through its holes.
+  bool masked = false;
+  Lattice maskLattice;
+  Mla::Aperture hole = Mla::Aperture::Circle;
+  double holeMm = 0.0;
+};
+
+struct StackTracer::Region {
+  std::vector<float> nTable;      // n at 300, 301, ..., 1000 nm; empty: air
+  enum class Kind { Open, Sheet, Walls } kind = Kind::Open;
+  Lattice lattice;                // sheets and walls
+  Mla::Aperture hole = Mla::Aperture::Circle;
+  double holeMm = 0.0;
+  double openHalf = 0.0;          // walls: half the open width of a cell
+  double reflectance = 0.0;       // walls
+};
+
+StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double originX, double originY)
+    : fresnel_(fresnel) {
+  auto refuse = [&](const StackLayer& l, const std::string& what) {
+    throw InputError(s.file, l.keyPath, what, "a stack the ray tracer models (docs/formats.md §3.6a)");
+  };
+  if (s.curvature || s.panelRadiusMm) throw InputError(s.file, "stack.curvature", "a curved stack", "a flat stack for the ray tracer so far");
+  const MaterialCatalog& catalog = MaterialCatalog::standard();
+  Boundary panel;  // z = 0: the panel emits into the first layer
+  boundaries_.push_back(panel);
+  for (size_t i = 0; i < s.layers.size(); ++i) {
+    const StackLayer& l = s.layers[i];
+    const double z0 = s.layerBackZ(i), z1 = s.layerBackZ(i + 1);
+    Region r;
+    if (!l.material.empty()) {
+      const IorPtr ior = catalog.dielectric(l.material);
+      for (int nm = 300; nm <= 1000; ++nm) r.nTable.push_back(ior->n(float(nm)));
+    }
+    if (l.kind == StackLayer::Kind::LensArray) {
+      if (i > 0 && s.layers[i - 1].kind == StackLayer::Kind::LensArray) refuse(l, "a lens array in contact with another");
+      const bool cellAperture = l.apertureMm >= l.pitchMm * (1.0 - 1e-12) &&
+                                (l.aperture == Mla::Aperture::Square) == (l.lattice == Mla::Lattice::Square);
+      if (!cellAperture && l.aperture != Mla::Aperture::Circle)
+        refuse(l, "a square or hex clear aperture smaller than its cell (walls between caps)");
+      Boundary& back = boundaries_.back();
+      if (!l.back.isPlane()) back.surface = l.back;
+      back.lattice = latticeOf(l, originX, originY);
+      back.rClamp = l.apertureRadiusMm();
+      Boundary front;
+      front.z = z1;
+      if (!l.front.isPlane()) front.surface = l.front;
+      front.lattice = back.lattice;
+      front.rClamp = back.rClamp;
+      boundaries_.push_back(front);
+    } else {
+      Boundary next;
+      next.z = z1;
+      boundaries_.push_back(next);
+    }
+    if (l.kind == StackLayer::Kind::Apertures) {
+      if (z1 == z0) {  // a sheet of no thickness: a mask on the boundary, no region
+        boundaries_.pop_back();
+        Boundary& b = boundaries_.back();
+        b.masked = true, b.maskLattice = latticeOf(l, originX, originY), b.hole = l.hole, b.holeMm = l.holeMm;
+        continue;
+      }
+      r.kind = Region::Kind::Sheet, r.lattice = latticeOf(l, originX, originY), r.hole = l.hole, r.holeMm = l.holeMm;
+    }
+    if (l.kind == StackLayer::Kind::Barriers)
+      r.kind = Region::Kind::Walls, r.lattice = latticeOf(l, originX, originY),
+      r.openHalf = (l.pitchMm - l.wallMm) / 2.0, r.reflectance = l.reflectance;
+    boundaries_.back().z = z1;
+    regions_.push_back(r);
+  }
+  for (Boundary& b : boundaries_) {
+    b.zMin = b.zMax = b.z;
+    if (!b.surface) continue;
+    for (int k = 0; k <= 256; ++k) {  // the slab: the sag's extremes over the aperture
+      const double z = b.z + b.surface->sag(b.rClamp * k / 256.0).value_or(0.0);
+      b.zMin = std::min(b.zMin, z), b.zMax = std::max(b.zMax, z);
+    }
+  }
+  top_ = boundaries_.back().z;
+}
+
+StackTracer::~StackTracer() = default;
+StackTracer::StackTracer(StackTracer&&) noexcept = default;
+
+double StackTracer::boundaryZ(const Boundary& b, double x, double y) const {
+  if (!b.surface) return b.z;
+  double cx, cy;
+  b.lattice.centre(x, y, cx, cy);
+  const double r = std::min(std::hypot(x - cx, y - cy), b.rClamp);
+  return b.z + b.surface->sag(r).value_or(0.0);
+}
+
+Vec3d StackTracer::boundaryNormal(const Boundary& b, double x, double y) const {
+  if (!b.surface) return {0.0, 0.0, 1.0};
+  double cx, cy;
+  b.lattice.centre(x, y, cx, cy);
+  const double r = std::hypot(x - cx, y - cy);
+  if (r >= b.rClamp || r == 0.0) return {0.0, 0.0, 1.0};
+  const double slope = sagSlope(*b.surface, r);
+  return glm::normalize(Vec3d(-slope * (x - cx) / r, -slope * (y - cy) / r, 1.0));
+}
+
+bool StackTracer::hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t) const {
+  // The part of the ray inside the slab [zMin, zMax].
+  double t0 = kEps, t1 = tMax;
+  if (d.z != 0.0) {
+    const double ta = (b.zMin - o.z) / d.z, tb = (b.zMax - o.z) / d.z;
+    t0 = std::max(t0, std::min(ta, tb) - kEps), t1 = std::min(t1, std::max(ta, tb) + kEps);
+  } else if (o.z < b.zMin || o.z > b.zMax) {
+    return false;
+  }
+  if (!(t0 <= t1)) return false;
+  if (!b.surface) {
+    if (d.z == 0.0) return false;
+    t = (b.z - o.z) / d.z;
+    return t >= kEps && t <= tMax;
+  }
+  auto f = [&](double s) { return o.z + s * d.z - boundaryZ(b, o.x + s * d.x, o.y + s * d.y); };
+  const double across = std::hypot(d.x, d.y), depth = std::max(b.zMax - b.zMin, 1e-12);
+  double step = kNone;
+  if (across > 0.0) step = b.lattice.pitch / 128.0 / across;
+  if (d.z != 0.0) step = std::min(step, depth / 16.0 / std::fabs(d.z));
+  if (!std::isfinite(step)) return false;
+  double a = t0, fa = f(a);
+  while (a < t1) {
+    const double c = std::min(a + step, t1), fc = f(c);
+    if ((fa <= 0.0) != (fc <= 0.0)) {
+      double lo = a, hi = c, flo = fa;
+      while (hi - lo > kBisectTol) {
+        const double mid = 0.5 * (lo + hi), fm = f(mid);
+        if ((fm <= 0.0) == (flo <= 0.0)) lo = mid, flo = fm;
+        else hi = mid;
+      }
+      t = 0.5 * (lo + hi);
+      return true;
+    }
+    a = c, fa = fc;
+  }
+  return false;
+}
+
+bool StackTracer::hitWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double& t, Vec3d& n) const {
+  double cx, cy;
+  r.lattice.centre(o.x, o.y, cx, cy);
+  std::array<Vec3d, 6> sides;
+  const int count = cellSides(r.lattice.hex, sides);
+  t = kNone;
+  for (int i = 0; i < count; ++i) {
+    const double along = sides[i].x * d.x + sides[i].y * d.y;
+    if (along <= 0.0) continue;
+    const double at = (r.openHalf - (sides[i].x * (o.x - cx) + sides[i].y * (o.y - cy))) / along;
+    if (at < t) t = std::max(at, 0.0), n = -sides[i];
+  }
+  return t <= tMax;
+}
+
+bool StackTracer::passesSheet(const Region& r, const Point3d& a, const Point3d& b) const {
+  double ax, ay, bx, by;
+  r.lattice.centre(a.x, a.y, ax, ay);
+  r.lattice.centre(b.x, b.y, bx, by);
+  return ax == bx && ay == by && insideShape(r.hole, r.holeMm, a.x - ax, a.y - ay) &&
+         insideShape(r.hole, r.holeMm, b.x - bx, b.y - by);
+}
+
+// n(lambda) by linear interpolation in the 1 nm table, as real_mla.h does.
+double StackTracer::index(const Region& r, double lambdaNm) const {
+  if (r.nTable.empty()) return 1.0;
+  const double x = std::clamp(lambdaNm - 300.0, 0.0, double(r.nTable.size() - 1));
+  const size_t i = std::min(size_t(x), r.nTable.size() - 2);
+  const double f = x - double(i);
+  return double(r.nTable[i]) + f * double(r.nTable[i + 1] - r.nTable[i]);
+}
+
+bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Rng* rng, StackExit& out) const {
+  Point3d p = o0;
+  Vec3d d = d0;
+  int region;
+  if (p.z <= 0.0 && d.z > 0.0) {  // from the panel: it emits into the first layer
+    p += d * (-p.z / d.z);
+    region = 0;
+  } else if (p.z >= top_ && d.z < 0.0) {
+    region = int(regions_.size());  // outside, in front of the stack
+  } else {
+    return false;
+  }
+  out = StackExit{};
+  Point3d entry = p;
+  for (int events = 0; events < maxEvents_; ++events) {
+    const bool outside = region == int(regions_.size());
+    const Region air;
+    const Region& r = outside ? air : regions_[size_t(region)];
+    const Boundary& lower = boundaries_[size_t(region)];
+    double tLow = kNone, tUp = kNone, tWall = kNone, t;
+    Vec3d wallN(0.0);
+    if (hitBoundary(lower, p, d, kNone, t)) tLow = t;
+    if (!outside && hitBoundary(boundaries_[size_t(region) + 1], p, d, tLow, t)) tUp = t;
+    if (outside && !(tLow < kNone)) return false;  // leaving in front without meeting the stack
+    if (r.kind == Region::Kind::Walls && hitWall(r, p, d, std::min(tLow, tUp), t, wallN)) tWall = t;
+    const double tHit = std::min({tLow, tUp, tWall});
+    if (!(tHit < kNone)) return false;
+    p += d * tHit;
+    out.events = events + 1;
+    if (tWall == tHit) {  // a barrier wall: absorbed, or reflected with its reflectance
+      if (r.reflectance <= 0.0) return false;
+      if (fresnel_ == FresnelMode::Stochastic) {
+        if (!rng || rng->uniformDouble() >= r.reflectance) return false;
+      } else {
+        out.throughput *= r.reflectance;
+      }
+      d = reflectDir(d, wallN);
+      continue;
+    }
+    const bool goingUp = tUp == tHit;
+    const size_t bi = size_t(region) + (goingUp ? 1 : 0);
+    const Boundary& b = boundaries_[bi];
+    if (r.kind == Region::Kind::Sheet && !passesSheet(r, entry, p)) return false;
+    if (b.masked) {
+      double cx, cy;
+      b.maskLattice.centre(p.x, p.y, cx, cy);
+      if (!insideShape(b.hole, b.holeMm, p.x - cx, p.y - cy)) return false;
+    }
+    const int next = goingUp ? region + 1 : region - 1;
+    if (next < 0) {  // back through the panel plane
+      out.p = p, out.d = d, out.towardViewer = false;
+      return true;
+    }
+    const double n1 = index(r, lambdaNm), n2 = next < int(regions_.size()) ? index(regions_[size_t(next)], lambdaNm) : 1.0;
+    Vec3d n = boundaryNormal(b, p.x, p.y);
+    if (glm::dot(n, d) > 0.0) n = -n;  // facing the incoming ray
+    const double cosi = -glm::dot(n, d), eta = n1 / n2, sin2t = eta * eta * (1.0 - cosi * cosi);
+    const double refl = sin2t >= 1.0 ? 1.0 : fresnelReflectance(cosi, n1, n2);
+    bool reflect = sin2t >= 1.0;
+    if (!reflect && fresnel_ == FresnelMode::Stochastic && rng) reflect = rng->uniformDouble() < refl;
+    if (!reflect && fresnel_ == FresnelMode::Weighted) out.throughput *= 1.0 - refl;
+    if (reflect) {
+      d = reflectDir(d, n);
+      continue;
+    }
+    d = glm::normalize(eta * d + (eta * cosi - std::sqrt(1.0 - sin2t)) * n);
+    region = next;
+    entry = p;
+    if (region == int(regions_.size())) {
+      out.p = p, out.d = d, out.towardViewer = true;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace inim

@@ -1,0 +1,73 @@
+#pragma once
+// StackTracer: real rays through a flat optical stack (display/optical_stack.h), in double
+// precision: refraction with n(lambda) at every surface (per ray's wavelength), Fresnel (off,
+// weighted or stochastic), total internal reflection, rays crossing into neighbouring cells,
+// aperture sheets and barrier walls that absorb (or reflect, with the walls' reflectance).
+//
+// Frame: the stack's (panel at z = 0, + toward the viewer); lattices put a lenslet (hole, cell)
+// centre at (originX + offset, originY + offset) and repeat as the layer's lattice does
+// (square: k P, l P; hex: rows P sqrt(3)/2 apart, odd rows shifted by P/2).
+//
+// Surfaces as height fields. Layer boundaries are planes, or a lens array's surface: in each
+// lattice cell z = z_plane + sag(r), r the distance to the cell's centre, r clamped to the clear
+// aperture's radius (flat land at the aperture edge's height beyond it). A ray meets such a
+// surface by marching over the slab the surface fills (steps of at most 1/128 of the pitch
+// across and 1/16 of the slab's depth), then bisecting to 1e-13 mm: a double crossing within
+// one step (a graze) can be missed; the cell-walking tracer of real_mla.h is exact for the one
+// lens array it models, and tests check the two agree.
+//
+// Not modelled yet (the constructor refuses with an InputError naming the layer): curved
+// stacks, lens arrays with square or hex apertures smaller than their cells (their walls), and
+// two lens arrays in contact.
+#include <memory>
+#include <vector>
+
+#include "core/geometry.h"
+#include "core/rng.h"
+#include "display/optical_stack.h"
+#include "mla_optics/mla_model.h"
+
+namespace inim {
+
+struct StackExit {
+  Point3d p{0.0};            // where the ray left the stack (its last event)
+  Vec3d d{0.0};              // unit direction leaving the stack
+  double throughput = 1.0;   // Fresnel (weighted mode) and wall reflectances
+  int events = 0;            // surface interactions
+  bool towardViewer = true;  // left through the front (else back through the panel plane)
+};
+
+class StackTracer {
+ public:
+  // Lattice points of every layer are placed relative to (originXMm, originYMm).
+  StackTracer(const OpticalStack& stack, FresnelMode fresnel = FresnelMode::Off, double originXMm = 0.0,
+              double originYMm = 0.0);
+  ~StackTracer();  // in the .cpp, where Boundary and Region are complete
+  StackTracer(StackTracer&&) noexcept;
+
+  // Traces from `o` (inside the stack's z range, or on the panel plane z = 0 heading +z, or in
+  // front of the stack heading -z) along unit `d` until the ray leaves the stack (true, `out`
+  // holds where and which way) or is absorbed (false: an aperture sheet, a wall, too many
+  // events). `rng` is needed for the stochastic Fresnel mode only.
+  bool trace(const Point3d& o, const Vec3d& d, double lambdaNm, Rng* rng, StackExit& out) const;
+
+  double frontZ() const { return top_; }
+
+ private:
+  struct Boundary;
+  struct Region;
+  double boundaryZ(const Boundary& b, double x, double y) const;
+  Vec3d boundaryNormal(const Boundary& b, double x, double y) const;  // unit, +z side up
+  bool hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t) const;
+  bool hitWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double& t, Vec3d& n) const;
+  bool passesSheet(const Region& r, const Point3d& a, const Point3d& b) const;
+  double index(const Region& r, double lambdaNm) const;
+
+  std::vector<Boundary> boundaries_;  // boundaries_[i] below region i, boundaries_[i + 1] above
+  std::vector<Region> regions_;
+  FresnelMode fresnel_;
+  double top_ = 0.0;
+  int maxEvents_ = 64;
+};
+
+}  // namespace inim

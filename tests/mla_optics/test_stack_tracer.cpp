@@ -1,0 +1,168 @@
+// StackTracer (mla_optics/stack_tracer.h): real rays through optical stacks, against the exact
+// cell-walking tracer of today's MLA, the first-order focal point of a compound stack, and the
+// geometric limits of barrier walls and pinhole sheets.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/rng.h"
+#include "display/stack_first_order.h"
+#include "mla_optics/stack_tracer.h"
+#include "mla_test_util.h"
+
+using namespace inim;
+using namespace mla_test;
+
+namespace {
+
+Mla prototypeMla(Mla::Orientation o) {
+  Mla m;
+  m.pitchMm = 1.0;
+  m.radiusMm = 1.62;
+  m.substrateThicknessMm = 1.5;
+  m.material = "PMMA";
+  m.aperture = Mla::Aperture::Square;
+  m.apertureMm = 1.0;
+  m.orientation = o;
+  return m;
+}
+
+StackLayer layer(StackLayer::Kind kind, double thickness) {
+  StackLayer l;
+  l.kind = kind;
+  l.thicknessMm = thickness;
+  l.pitchMm = 1.0;
+  return l;
+}
+
+}  // namespace
+
+// Today's MLA as a stack: every ray from the panel (5,000 random rays up to 25 degrees, over
+// several cells, crossing into neighbours, some reflected by TIR) leaves where and as the exact
+// tracer says, to 1e-8 mm and 1e-9 in direction, with the same Fresnel weight.
+TEST(StackTracer, AgreesWithTheExactTracerOfTodaysMla) {
+  for (auto o : {kViewer, kPanel}) {
+    Spec sp = spec(o);
+    sp.gap = 3.3;
+    const auto exact = makeMla(sp);
+    const StackTracer stack(stackFromMla(prototypeMla(o), sp.gap), FresnelMode::Weighted);
+    Rng rng(7, 1);
+    int both = 0, agreeOnFate = 0;
+    for (int i = 0; i < 5000; ++i) {
+      const double x = -2.5 + 5.0 * rng.uniformDouble(), y = -2.5 + 5.0 * rng.uniformDouble();
+      const double theta = 25.0 * M_PI / 180.0 * std::sqrt(rng.uniformDouble()), phi = 2.0 * M_PI * rng.uniformDouble();
+      const Vec3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      MlaExit ex;
+      StackExit sx;
+      const bool a = exact->traceToViewer({x, y, exact->panelZ()}, d, 550.0, nullptr, ex);
+      const bool b = stack.trace({x, y, 0.0}, d, 550.0, nullptr, sx) && sx.towardViewer;
+      agreeOnFate += a == b;
+      if (!a || !b) continue;
+      ++both;
+      EXPECT_NEAR(sx.p.x, ex.p.x, 1e-8) << i;
+      EXPECT_NEAR(sx.p.y, ex.p.y, 1e-8) << i;
+      EXPECT_NEAR(sx.p.z, ex.p.z + sp.gap, 1e-8) << i;
+      EXPECT_NEAR(glm::length(sx.d - ex.d), 0.0, 1e-9) << i;
+      EXPECT_NEAR(sx.throughput, ex.throughput, 1e-9) << i;
+    }
+    EXPECT_EQ(agreeOnFate, 5000) << orientationName(o);
+    EXPECT_GT(both, 4500) << orientationName(o);
+  }
+}
+
+// A compound cell (two plano-convex arrays, caps facing): collimated rays from the viewer 5 um
+// off a lenslet's axis cross it at the first-order front focal point F.
+TEST(StackTracer, ACompoundCellFocusesAtItsFirstOrderFocalPoint) {
+  OpticalStack s;
+  StackLayer a = layer(StackLayer::Kind::LensArray, 1.5), b = a;
+  a.material = b.material = "PMMA";
+  a.aperture = b.aperture = Mla::Aperture::Square;
+  a.apertureMm = b.apertureMm = 1.0;
+  a.front.radiusMm = -1.62;
+  b.back.radiusMm = 2.4;
+  b.back.conic = -0.3;
+  s.layers = {layer(StackLayer::Kind::Gap, 3.0), a, layer(StackLayer::Kind::Gap, 1.0), b};
+  const StackFirstOrder fo = stackFirstOrder(s, 550.0);
+  const StackTracer tracer(s);
+  StackExit ex;
+  ASSERT_TRUE(tracer.trace({0.005, 0.0, tracer.frontZ() + 1.0}, {0.0, 0.0, -1.0}, 550.0, nullptr, ex));
+  EXPECT_FALSE(ex.towardViewer);
+  const double zAxis = ex.p.z - ex.p.x * ex.d.z / ex.d.x;
+  EXPECT_NEAR(zAxis, fo.frontFocalZMm, 1e-4) << "first order F at z = " << fo.frontFocalZMm;
+}
+
+// Barrier walls h high: a ray from x0 inside a cell leaves iff it stays within the open part
+// of its cell up to the walls' top, |x0 + h tan(theta)| < (P - w) / 2; nothing else is lost.
+TEST(StackTracer, BarrierWallsRemoveExactlyTheRaysBeyondTheGeometricLimit) {
+  for (double wall : {0.0, 0.1}) {
+    OpticalStack s;
+    StackLayer barriers = layer(StackLayer::Kind::Barriers, 2.0);
+    barriers.wallMm = wall;
+    s.layers = {barriers, layer(StackLayer::Kind::Gap, 1.0)};
+    const StackTracer tracer(s);
+    const double open = (1.0 - wall) / 2.0;
+    int passed = 0, checked = 0;
+    for (double x0 = -0.44; x0 <= 0.44; x0 += 0.0173)
+      for (double deg = -30.0; deg <= 30.0; deg += 0.77) {
+        const double reach = x0 + 2.0 * std::tan(deg * M_PI / 180.0);
+        if (std::fabs(std::fabs(reach) - open) < 1e-6) continue;  // grazing a wall's top edge
+        const Vec3d d(std::sin(deg * M_PI / 180.0), 0.0, std::cos(deg * M_PI / 180.0));
+        StackExit ex;
+        const bool out = tracer.trace({x0, 0.3, 0.0}, d, 550.0, nullptr, ex);
+        EXPECT_EQ(out, std::fabs(reach) < open) << "x0 " << x0 << ", " << deg << " deg, wall " << wall;
+        passed += out;
+        ++checked;
+      }
+    EXPECT_GT(passed, checked / 4);
+    EXPECT_LT(passed, checked);
+  }
+}
+
+// A pinhole sheet of no thickness 3 mm from the panel: a ray passes iff it crosses the sheet
+// inside a hole, and leaves unbent.
+TEST(StackTracer, APinholeSheetPassesOnlyRaysThroughItsHoles) {
+  OpticalStack s;
+  StackLayer sheet = layer(StackLayer::Kind::Apertures, 0.0);
+  sheet.hole = Mla::Aperture::Circle;
+  sheet.holeMm = 0.1;
+  s.layers = {layer(StackLayer::Kind::Gap, 3.0), sheet, layer(StackLayer::Kind::Gap, 0.5)};
+  const StackTracer tracer(s);
+  Rng rng(3, 4);
+  int passed = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Point3d o(-1.0 + 2.0 * rng.uniformDouble(), -1.0 + 2.0 * rng.uniformDouble(), 0.0);
+    const Vec3d d = glm::normalize(Vec3d(0.3 * (rng.uniformDouble() - 0.5), 0.3 * (rng.uniformDouble() - 0.5), 1.0));
+    const Point3d at = o + d * (3.0 / d.z);
+    const double dx = at.x - std::round(at.x), dy = at.y - std::round(at.y), r = std::hypot(dx, dy);
+    if (std::fabs(r - 0.05) < 1e-9) continue;
+    StackExit ex;
+    const bool out = tracer.trace(o, d, 550.0, nullptr, ex);
+    EXPECT_EQ(out, r < 0.05) << i;
+    if (out) {
+      EXPECT_NEAR(glm::length(ex.d - d), 0.0, 1e-12);
+    }
+    passed += out;
+  }
+  EXPECT_GT(passed, 10);
+}
+
+// What the tracer does not model yet is refused, naming the layer.
+TEST(StackTracer, RefusesWhatItDoesNotModelYet) {
+  OpticalStack s;
+  s.file = "stack.json";
+  StackLayer lens = layer(StackLayer::Kind::LensArray, 1.5);
+  lens.material = "PMMA";
+  lens.keyPath = "stack.layers[1]";
+  lens.front.radiusMm = -1.62;
+  lens.apertureMm = 0.8;  // a square aperture smaller than the cell: walls between the caps
+  s.layers = {layer(StackLayer::Kind::Gap, 3.0), lens};
+  try {
+    StackTracer t(s);
+    FAIL() << "walls between caps accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "stack.layers[1]");
+  }
+  s.layers[1].apertureMm = 1.0;
+  s.curvature = StackCurvature{StackCurvature::Shape::Sphere, 300.0};
+  EXPECT_THROW(StackTracer{s}, InputError);
+}
