@@ -97,11 +97,19 @@ static void readStack(const JsonObject& o, Display& d, DisplayUse use) {
     d.reconstructionGapMm = checkGapMm(m->gapMm, d.file, "stack (panel to the lenslets' principal plane)");
     return;
   }
-  if (use == DisplayUse::Trace)
-    o.fail("stack", why,
-           "optics the ray tracer models so far: air gaps, then one lens array with a flat face and one convex "
-           "cap (`inim display info` analyses any stack)");
-  d.stackOnly = true;
+  std::string key;
+  if (const std::string part = untracedPart(*d.stack, key); !part.empty()) {
+    if (use == DisplayUse::Trace)
+      throw InputError(d.file, key, part,
+                       "optics the ray tracer models so far: flat stacks without walls between caps (`inim display "
+                       "info` analyses any stack)");
+    d.stackOnly = true;
+    return;
+  }
+  const StackAsMla equivalent = equivalentMla(*d.stack);
+  d.mla = equivalent.mla;
+  d.reconstructionGapMm = checkGapMm(equivalent.gapMm, d.file, "stack (panel to the stack's principal plane)");
+  d.stackTraced = true;
 }
 
 Display loadDisplay(const std::string& path, DisplayUse use) {

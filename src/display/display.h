@@ -38,8 +38,12 @@ struct Display {
   std::vector<std::string> assumptions;
   // The optical stack the file gives in place of "mla" (docs/formats.md §3.6a). When it is one
   // lens array behind air, `mla` and reconstructionGapMm are derived from it and every stage
-  // uses them; otherwise only a description was asked for (`stackOnly`: mla is empty).
+  // uses them. Otherwise, when the stack tracer models it (`stackTraced`), `mla` is the
+  // equivalent MLA that places the EIs (equivalentMla), the gap is the panel's to the stack's
+  // principal plane H, and `view` refracts through every layer; else only a description was
+  // asked for (`stackOnly`: mla is empty).
   std::optional<OpticalStack> stack;
+  bool stackTraced = false;
   bool stackOnly = false;
 };
 

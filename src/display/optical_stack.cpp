@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/format.h"
+#include "display/stack_first_order.h"
 #include "spectral/dispersion.h"
 
 namespace inim {
@@ -309,6 +310,46 @@ std::optional<StackAsMla> mlaFromStack(const OpticalStack& s, std::string& why) 
   r.mla.orientation = capFront ? Mla::Orientation::CurvedTowardViewer : Mla::Orientation::CurvedTowardPanel;
   const double n = MaterialCatalog::standard().dielectric(l.material)->n(float(kLambdaDNm));
   r.gapMm = s.layerBackZ(s.layers.size() - 1) + (capFront ? l.thicknessMm / n : 0.0);  // H, as stackFromMla
+  return r;
+}
+
+std::string untracedPart(const OpticalStack& s, std::string& key) {
+  key = "stack";
+  if (s.curvature || s.panelRadiusMm) return "a curved array or panel";
+  for (size_t i = 0; i < s.layers.size(); ++i) {
+    const StackLayer& l = s.layers[i];
+    key = l.keyPath;
+    if (l.kind != StackLayer::Kind::LensArray) continue;
+    if (i > 0 && s.layers[i - 1].kind == StackLayer::Kind::LensArray) return "a lens array in contact with another";
+    const bool cellAperture = l.apertureMm >= l.pitchMm * (1.0 - 1e-12) &&
+                              (l.aperture == Mla::Aperture::Square) == (l.lattice == Mla::Lattice::Square);
+    if (!cellAperture && l.aperture != Mla::Aperture::Circle)
+      return "a square or hex clear aperture smaller than its cell (walls between caps)";
+  }
+  key.clear();
+  return "";
+}
+
+StackAsMla equivalentMla(const OpticalStack& s) {
+  const StackFirstOrder fo = stackFirstOrder(s);
+  auto first = [&](StackLayer::Kind k) {
+    return std::find_if(s.layers.begin(), s.layers.end(), [k](const StackLayer& l) { return l.kind == k; });
+  };
+  const bool lenses = first(StackLayer::Kind::LensArray) != s.layers.end();
+  const auto grid = lenses ? first(StackLayer::Kind::LensArray) : first(StackLayer::Kind::Apertures);
+  StackAsMla r;
+  r.mla.name = "equivalent lens array of " + s.file;
+  r.mla.file = s.file;
+  r.mla.lattice = grid->lattice;
+  r.mla.pitchMm = grid->pitchMm;
+  r.mla.aperture = lenses ? grid->aperture : grid->hole;
+  r.mla.apertureMm = lenses ? grid->apertureMm : grid->holeMm;
+  r.mla.material = lenses ? grid->material : "PMMA";
+  r.mla.substrateThicknessMm = grid->thicknessMm;
+  // A pinhole array (no power): the pinholes' plane is the reference plane, and the pinhole
+  // model's "focal length" is its gap (its image of the panel lies at infinity).
+  r.gapMm = fo.afocal ? s.layerBackZ(size_t(grid - s.layers.begin())) : fo.reducedGapMm;
+  r.mla.focalLengthMm = fo.afocal ? r.gapMm : fo.focalLengthMm;
   return r;
 }
 

@@ -100,4 +100,15 @@ struct StackAsMla {
 };
 std::optional<StackAsMla> mlaFromStack(const OpticalStack& stack, std::string& why);
 
+// What in `stack` the stack ray tracer (mla_optics/stack_tracer.h) does not model yet, naming
+// the layer's key path in `key`; empty when it models all of it.
+std::string untracedPart(const OpticalStack& stack, std::string& key);
+
+// For a stack the MLA of today does not describe: the MLA that stands in for it where the EI
+// layout and the pinhole model need one (the first lens array's lattice, pitch and aperture,
+// the stack's effective focal length at n_d, its material), and the gap from the panel to the
+// stack's front principal plane H (reduced to air). The stack's own tracer refracts through
+// every layer; this MLA only places the EIs.
+StackAsMla equivalentMla(const OpticalStack& stack);
+
 }  // namespace inim

@@ -6,6 +6,7 @@
 #include "display/mla.h"
 #include "mla_optics/ideal_mla.h"
 #include "mla_optics/real_mla.h"
+#include "mla_optics/stack_mla.h"
 
 namespace inim {
 
@@ -20,6 +21,8 @@ DisplayModel makeDisplayModel(const Display& d, const EiLayout& L, const Image& 
   m.panel = std::make_unique<PanelEmitter>(d.panel, L, eia, eiaFile, m.gapMm, emitter);
   if (mla == MlaKind::Ideal)
     m.mla = std::make_unique<IdealLensletMla>(L, d.mla.pitchMm, lensletFocus(d.mla).focalLengthMm, m.gapMm);
+  else if (d.stackTraced)
+    m.mla = std::make_unique<StackMla>(d, L, m.gapMm);
   else
     m.mla = makeRealMla(d, L, m.gapMm);
   m.area = L.activeArea();

@@ -233,6 +233,9 @@ void RealMla::placeExtent(const std::string& file) {
 }
 
 RealMlaGeometry RealMla::geometryFor(const Display& d, const EiLayout& L, double gapMm) {
+  if (d.stackTraced)  // its mla only places the EIs: one plano-convex lens would not be its optics
+    throw InputError(d.file, "stack", "a stack of several layers",
+                     "a display with one MLA for this use of the single-lens model (view takes the stack)");
   const Mla& m = d.mla;
   RealMlaGeometry g;
   g.lattice = m.lattice;

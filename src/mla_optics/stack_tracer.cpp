@@ -112,10 +112,9 @@ struct StackTracer::Region {
 
 StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double originX, double originY)
     : fresnel_(fresnel) {
-  auto refuse = [&](const StackLayer& l, const std::string& what) {
-    throw InputError(s.file, l.keyPath, what, "a stack the ray tracer models (docs/formats.md §3.6a)");
-  };
-  if (s.curvature || s.panelRadiusMm) throw InputError(s.file, "stack.curvature", "a curved stack", "a flat stack for the ray tracer so far");
+  std::string key;
+  if (const std::string part = untracedPart(s, key); !part.empty())
+    throw InputError(s.file, key, part, "a stack the ray tracer models (docs/formats.md §3.6a)");
   const MaterialCatalog& catalog = MaterialCatalog::standard();
   Boundary panel;  // z = 0: the panel emits into the first layer
   boundaries_.push_back(panel);
@@ -128,11 +127,6 @@ StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double orig
       for (int nm = 300; nm <= 1000; ++nm) r.nTable.push_back(ior->n(float(nm)));
     }
     if (l.kind == StackLayer::Kind::LensArray) {
-      if (i > 0 && s.layers[i - 1].kind == StackLayer::Kind::LensArray) refuse(l, "a lens array in contact with another");
-      const bool cellAperture = l.apertureMm >= l.pitchMm * (1.0 - 1e-12) &&
-                                (l.aperture == Mla::Aperture::Square) == (l.lattice == Mla::Lattice::Square);
-      if (!cellAperture && l.aperture != Mla::Aperture::Circle)
-        refuse(l, "a square or hex clear aperture smaller than its cell (walls between caps)");
       Boundary& back = boundaries_.back();
       if (!l.back.isPlane()) back.surface = l.back;
       back.lattice = latticeOf(l, originX, originY);
@@ -332,6 +326,7 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Rng
       continue;
     }
     d = glm::normalize(eta * d + (eta * cosi - std::sqrt(1.0 - sin2t)) * n);
+    if (b.surface) out.crossedLens = true, out.lensXMm = p.x, out.lensYMm = p.y;
     region = next;
     entry = p;
     if (region == int(regions_.size())) {

@@ -35,6 +35,9 @@ struct StackExit {
   double throughput = 1.0;   // Fresnel (weighted mode) and wall reflectances
   int events = 0;            // surface interactions
   bool towardViewer = true;  // left through the front (else back through the panel plane)
+  // Where the ray last refracted at a lens surface (the lenslet that formed the image).
+  bool crossedLens = false;
+  double lensXMm = 0.0, lensYMm = 0.0;
 };
 
 class StackTracer {

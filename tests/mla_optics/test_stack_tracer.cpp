@@ -1,12 +1,14 @@
 // StackTracer (mla_optics/stack_tracer.h): real rays through optical stacks, against the exact
 // cell-walking tracer of today's MLA, the first-order focal point of a compound stack, and the
-// geometric limits of barrier walls and pinhole sheets.
+// geometric limits of barrier walls and pinhole sheets; and StackMla, the view simulation's
+// model of a stack display, against RealMla.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/rng.h"
 #include "display/stack_first_order.h"
+#include "mla_optics/stack_mla.h"
 #include "mla_optics/stack_tracer.h"
 #include "mla_test_util.h"
 
@@ -165,4 +167,48 @@ TEST(StackTracer, RefusesWhatItDoesNotModelYet) {
   s.layers[1].apertureMm = 1.0;
   s.curvature = StackCurvature{StackCurvature::Shape::Sphere, 300.0};
   EXPECT_THROW(StackTracer{s}, InputError);
+}
+
+// The view simulation's StackMla on today's MLA written as a stack: every camera ray reaches
+// the panel where RealMla says (to float precision), through the same lenslet, with the same
+// Fresnel weight (rays kept inside the array: the stack's lattice has no edge, the real sheet
+// ends 4 lenslets beyond the EIs); and a gap other than the display's moves the panel with the
+// first air gap.
+TEST(StackMla, AgreesWithRealMlaOnTodaysMlaAsAStack) {
+  Display d = smallDisplay(9, 7, 10, 0.1, 1.0, 3.3, 3.3);
+  const EiLayout L = computeLayout(d);
+  const auto real = RealMla::fromDisplay(d, L, d.reconstructionGapMm, RealMlaOptions{FresnelMode::Weighted});
+  d.stack = stackFromMla(d.mla, d.reconstructionGapMm);
+  d.stack->layers[1].material = d.mla.material.empty() ? "PMMA" : d.mla.material;
+  d.stackTraced = true;
+  const StackMla stack(d, L, d.reconstructionGapMm, FresnelMode::Weighted);
+  EXPECT_NEAR(stack.frontZ(), real->frontZ(), 1e-5);
+  Rng rng(11, 2);
+  int reached = 0;
+  for (int i = 0; i < 2000; ++i) {
+    Ray ray;
+    ray.o = Point3(float(-3.0 + 6.0 * rng.uniformDouble()), float(-2.5 + 5.0 * rng.uniformDouble()), 30.0f);
+    ray.d = glm::normalize(Vec3(float(0.2 * (rng.uniformDouble() - 0.5)), float(0.2 * (rng.uniformDouble() - 0.5)), -1.0f));
+    PanelArrival a, b;
+    const bool ra = real->traceToPanel(ray, 550.0f, FresnelMode::Weighted, nullptr, a);
+    const bool rb = stack.traceToPanel(ray, 550.0f, FresnelMode::Weighted, nullptr, b);
+    ASSERT_EQ(ra, rb) << i;
+    if (!ra) continue;
+    ++reached;
+    EXPECT_NEAR(b.p.x, a.p.x, 2e-5) << i;
+    EXPECT_NEAR(b.p.y, a.p.y, 2e-5) << i;
+    EXPECT_NEAR(b.p.z, a.p.z, 1e-5) << i;
+    EXPECT_NEAR(glm::length(b.d - a.d), 0.0f, 1e-5f) << i;
+    EXPECT_NEAR(b.throughput, a.throughput, 1e-6f) << i;
+    EXPECT_EQ(b.lensletK, a.lensletK) << i;
+    EXPECT_EQ(b.lensletL, a.lensletL) << i;
+  }
+  EXPECT_GT(reached, 1900);
+  const StackMla farther(d, L, d.reconstructionGapMm + 0.5, FresnelMode::Weighted);
+  Ray axial;
+  axial.o = Point3(0.0f, 0.0f, 30.0f);
+  axial.d = Vec3(0.0f, 0.0f, -1.0f);
+  PanelArrival c;
+  ASSERT_TRUE(farther.traceToPanel(axial, 550.0f, FresnelMode::Weighted, nullptr, c));
+  EXPECT_FLOAT_EQ(c.p.z, float(-(d.reconstructionGapMm + 0.5)));
 }

@@ -1,0 +1,62 @@
+#include "mla_optics/stack_mla.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/format.h"
+#include "spectral/dispersion.h"
+
+namespace inim {
+
+namespace {
+
+// The display's stack with its first air gap changed so that the panel lies `gapMm` below the
+// reconstruction gap's plane.
+OpticalStack stackAtGap(const Display& d, double gapMm) {
+  OpticalStack s = *d.stack;
+  const double delta = gapMm - d.reconstructionGapMm;
+  if (std::fabs(delta) <= 1e-12) return s;
+  if (s.layers.empty() || s.layers[0].kind != StackLayer::Kind::Gap || !(s.layers[0].thicknessMm + delta > 0.0))
+    throw InputError(d.file, "stack.layers[0]", formatText("a gap changed by %.4g mm", delta),
+                     "a first air gap of the stack that can take the gap asked for");
+  s.layers[0].thicknessMm += delta;
+  return s;
+}
+
+}  // namespace
+
+StackMla::StackMla(const Display& d, const EiLayout& L, double gapMm, FresnelMode fresnel)
+    : fresnel_(fresnel), gapMm_(gapMm), layout_(&L), pitchMm_(d.mla.pitchMm) {
+  if (!d.stack) throw InputError(d.file, "stack", "(none)", "a display given as an optical stack");
+  if (L.lensX.empty() || L.lensY.empty()) throw InputError(d.file, "ei_count", "(no lenses)", "at least one lenslet");
+  const OpticalStack s = stackAtGap(d, gapMm);
+  for (FresnelMode m : {FresnelMode::Stochastic, FresnelMode::Weighted, FresnelMode::Off})
+    tracers_[int(m)] = std::make_unique<StackTracer>(s, m, L.lensXAt(0, 0), L.lensYAt(0, 0));
+  frontZ_ = float(std::nextafter(tracers_[0]->frontZ() - gapMm, 1e30));
+  for (const StackLayer& l : s.layers)
+    dispersive_ = dispersive_ || (!l.material.empty() && MaterialCatalog::standard().dielectric(l.material)->isDispersive());
+}
+
+void StackMla::lensletAt(double x, double y, int& k, int& l) const {
+  const EiLayout& L = *layout_;
+  const int rows = int(L.lensY.size()), cols = int(L.lensX.size());
+  const double rowPitch = L.lensY.size() > 1 ? L.lensY[0] - L.lensY[1] : pitchMm_;
+  l = int(std::lround((L.lensY[0] - y) / rowPitch));
+  k = (l >= 0 && l < rows) ? int(std::lround((x - L.lensXAt(0, l)) / pitchMm_)) : -1;
+  if (k < 0 || k >= cols || l < 0 || l >= rows) k = l = -1;
+}
+
+bool StackMla::traceToPanel(const Ray& ray, float lambdaNm, FresnelMode mode, Rng* rng, PanelArrival& out) const {
+  const StackTracer& tracer = *tracers_[int(mode)];
+  StackExit ex;
+  const Point3d o(ray.o.x, ray.o.y, double(ray.o.z) + gapMm_);
+  if (!tracer.trace(o, glm::normalize(Vec3d(ray.d)), lambdaNm, rng, ex) || ex.towardViewer) return false;
+  out.p = Point3(float(ex.p.x), float(ex.p.y), float(-gapMm_));
+  out.d = Vec3(ex.d);
+  out.throughput = float(ex.throughput);
+  out.lensletK = out.lensletL = -1;
+  if (ex.crossedLens) lensletAt(ex.lensXMm, ex.lensYMm, out.lensletK, out.lensletL);
+  return true;
+}
+
+}  // namespace inim

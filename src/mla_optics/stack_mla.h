@@ -1,0 +1,40 @@
+#pragma once
+// The view simulation's MLA for a display given as an optical stack that today's MLA does not
+// describe (Display::stackTraced): StackTracer in the display frame, the panel at z = -gap,
+// the lattices placed on the EI layout's lenslet centres. Lenslet indices are the layout's
+// lenslet nearest the point where the ray last refracted at a lens surface.
+#include <memory>
+
+#include "display/display.h"
+#include "display/ei_layout.h"
+#include "mla_optics/mla_model.h"
+#include "mla_optics/stack_tracer.h"
+
+namespace inim {
+
+class StackMla final : public MlaModel {
+ public:
+  // `gapMm`: the panel's distance below the display frame's z = 0 (the display's reconstruction
+  // gap, or another: the stack's first air gap grows or shrinks by the difference; InputError
+  // when there is no first air gap to change or it would vanish).
+  StackMla(const Display& display, const EiLayout& layout, double gapMm, FresnelMode fresnel = FresnelMode::Stochastic);
+
+  using MlaModel::traceToPanel;
+  bool traceToPanel(const Ray& ray, float lambdaNm, FresnelMode mode, Rng* rng, PanelArrival& out) const override;
+  FresnelMode fresnelMode() const override { return fresnel_; }
+  bool isDispersive() const override { return dispersive_; }
+  float frontZ() const override { return frontZ_; }
+
+ private:
+  void lensletAt(double x, double y, int& k, int& l) const;
+
+  std::unique_ptr<StackTracer> tracers_[3];  // by FresnelMode
+  FresnelMode fresnel_;
+  double gapMm_ = 0.0;
+  float frontZ_ = 0.0f;
+  bool dispersive_ = false;
+  const EiLayout* layout_ = nullptr;
+  double pitchMm_ = 1.0;
+};
+
+}  // namespace inim
