@@ -52,6 +52,7 @@ void printRadianceBenchResults();
 void registerFig11Benchmarks();
 void registerSplatBenchmarks(double minTime);
 void registerSceneBenchmarks();
+void registerMlaBenchmarks(double minTime);
 void registerPlaceBenchmarks(const RadianceBenchSettings& model, double minTime);
 void printFig11BenchResults();
 

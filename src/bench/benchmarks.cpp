@@ -40,6 +40,8 @@ void printRatios(std::map<std::string, double>& rps) {
   ratio("eia-query/inim-field", "eia-query/bare-embree");
   ratio("eia/paper-fig7-default-display-1spp", "eia-query/bare-embree");
   ratio("splats/guitar-query-960x540", "splats/guitar-bare-embree-boxes-960x540");
+  ratio("mla/stack-one-layer", "mla/real-one-layer");
+  ratio("mla/stack-two-layers", "mla/real-one-layer");
 }
 
 }  // namespace
@@ -51,6 +53,7 @@ void runBenchmarks(const BenchSettings& settings) {
   bench::registerFig11Benchmarks();
   bench::registerSplatBenchmarks(settings.minTime);
   bench::registerSceneBenchmarks();
+  bench::registerMlaBenchmarks(settings.minTime);
   bench::registerPlaceBenchmarks(settings.radiance, settings.minTime);
   // Debian builds libbenchmark without NDEBUG, so it prints a DEBUG warning; inim itself is a
   // Release build (see the header line below).

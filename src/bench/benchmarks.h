@@ -25,6 +25,9 @@
 //   scene/load-spheres/N   a scene description of N spheres parsed and read (10k, 100k, 1M):
 //                          linear in N; target: 1M in seconds
 //   scene/load-rectangles/100000  the same for emissive rectangles (meshes): linear too
+//   mla/real-one-layer, mla/stack-one-layer, mla/stack-two-layers  camera rays to the panel
+//                          through the default MLA (exact tracer; stack tracer) and a two-layer
+//                          stack; ratios against the first; target: two layers within 2x
 //   radiance/train-lego    train on the Lego scene (when its folder is given) at 200 x 200, every
 //                          8th view held out; reports the held-out PSNR; target >= 28 dB within
 //                          10 minutes

@@ -85,6 +85,32 @@ double sagSlope(const StackSurface& s, double r) {
 
 Vec3d reflectDir(const Vec3d& d, const Vec3d& n) { return d - 2.0 * glm::dot(d, n) * n; }
 
+// The root of f in [a, c] (f(a), f(c) of opposite signs) to kBisectTol: the Illinois variant of
+// regula falsi (superlinear on the smooth caps), with a bisection whenever it stalls.
+template <class F>
+double refineRoot(const F& f, double a, double fa, double c, double fc) {
+  int side = 0;
+  double last = a;
+  for (int i = 0; i < 200 && c - a > kBisectTol; ++i) {
+    double m = (fa * c - fc * a) / (fa - fc);
+    if (!(m > a && m < c) || i % 8 == 7) m = 0.5 * (a + c);
+    if (std::fabs(m - last) <= kBisectTol) return m;  // converged from one side
+    last = m;
+    const double fm = f(m);
+    if ((fm <= 0.0) == (fa <= 0.0)) {
+      a = m, fa = fm;
+      if (side == -1) fc *= 0.5;
+      side = -1;
+    } else {
+      c = m, fc = fm;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    }
+    if (fm == 0.0) return m;
+  }
+  return 0.5 * (a + c);
+}
+
 }  // namespace
 
 struct StackTracer::Boundary {
@@ -93,6 +119,7 @@ struct StackTracer::Boundary {
   Lattice lattice;
   double rClamp = 0.0;            // the clear aperture's radius: flat land beyond it
   double zMin = 0.0, zMax = 0.0;  // the slab the surface fills
+  double maxSlope = 0.0;          // largest |dz/dr| over the aperture: the height field's Lipschitz bound
   // An aperture sheet of no thickness lies on this boundary: rays pass only through its holes.
   bool masked = false;
   Lattice maskLattice;
@@ -160,10 +187,12 @@ StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double orig
   for (Boundary& b : boundaries_) {
     b.zMin = b.zMax = b.z;
     if (!b.surface) continue;
-    for (int k = 0; k <= 256; ++k) {  // the slab: the sag's extremes over the aperture
-      const double z = b.z + b.surface->sag(b.rClamp * k / 256.0).value_or(0.0);
+    for (int k = 0; k <= 1024; ++k) {  // the slab and the slope bound: extremes over the aperture
+      const double r = b.rClamp * k / 1024.0, z = b.z + b.surface->sag(r).value_or(0.0);
       b.zMin = std::min(b.zMin, z), b.zMax = std::max(b.zMax, z);
+      b.maxSlope = std::max(b.maxSlope, std::fabs(sagSlope(*b.surface, r)));
     }
+    b.maxSlope *= 1.0 + 1e-6;  // sampled: a margin for the maximum between samples
   }
   top_ = boundaries_.back().z;
 }
@@ -205,22 +234,21 @@ bool StackTracer::hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& 
     return t >= kEps && t <= tMax;
   }
   auto f = [&](double s) { return o.z + s * d.z - boundaryZ(b, o.x + s * d.x, o.y + s * d.y); };
+  // March: |f(t)| / L is a distance along the ray within which f keeps its sign (f is Lipschitz
+  // with L = |d.z| + maxSlope |d_xy|: the caps meet continuously at the cell borders), so such a
+  // step cannot pass a root; the fixed step (1/128 of the pitch across, 1/16 of the slab's depth)
+  // keeps the march moving where f is near zero.
   const double across = std::hypot(d.x, d.y), depth = std::max(b.zMax - b.zMin, 1e-12);
-  double step = kNone;
-  if (across > 0.0) step = b.lattice.pitch / 128.0 / across;
-  if (d.z != 0.0) step = std::min(step, depth / 16.0 / std::fabs(d.z));
-  if (!std::isfinite(step)) return false;
+  const double lipschitz = std::fabs(d.z) + b.maxSlope * across;
+  double minStep = kNone;
+  if (across > 0.0) minStep = b.lattice.pitch / 128.0 / across;
+  if (d.z != 0.0) minStep = std::min(minStep, depth / 16.0 / std::fabs(d.z));
+  if (!std::isfinite(minStep)) return false;
   double a = t0, fa = f(a);
   while (a < t1) {
-    const double c = std::min(a + step, t1), fc = f(c);
+    const double c = std::min(a + std::max(minStep, std::fabs(fa) / lipschitz), t1), fc = f(c);
     if ((fa <= 0.0) != (fc <= 0.0)) {
-      double lo = a, hi = c, flo = fa;
-      while (hi - lo > kBisectTol) {
-        const double mid = 0.5 * (lo + hi), fm = f(mid);
-        if ((fm <= 0.0) == (flo <= 0.0)) lo = mid, flo = fm;
-        else hi = mid;
-      }
-      t = 0.5 * (lo + hi);
+      t = refineRoot(f, a, fa, c, fc);
       return true;
     }
     a = c, fa = fc;

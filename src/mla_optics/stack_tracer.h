@@ -11,10 +11,12 @@
 // Surfaces as height fields. Layer boundaries are planes, or a lens array's surface: in each
 // lattice cell z = z_plane + sag(r), r the distance to the cell's centre, r clamped to the clear
 // aperture's radius (flat land at the aperture edge's height beyond it). A ray meets such a
-// surface by marching over the slab the surface fills (steps of at most 1/128 of the pitch
-// across and 1/16 of the slab's depth), then bisecting to 1e-13 mm: a double crossing within
-// one step (a graze) can be missed; the cell-walking tracer of real_mla.h is exact for the one
-// lens array it models, and tests check the two agree.
+// surface by marching over the slab the surface fills, each step the larger of |f| / L (f the
+// ray's height above the surface, L its Lipschitz bound: a step that cannot pass a root) and a
+// floor of 1/128 of the pitch across or 1/16 of the slab's depth, then refining the bracketed
+// root to 1e-13 mm (Illinois regula falsi). Only a double crossing within one floor step (a
+// graze) can be missed; the cell-walking tracer of real_mla.h is exact for the one lens array
+// it models, and tests check the two agree.
 //
 // Not modelled yet (the constructor refuses with an InputError naming the layer): curved
 // stacks, lens arrays with square or hex apertures smaller than their cells (their walls), and
