@@ -362,6 +362,7 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Rng
       return true;
     }
   }
+  out.trapped = true;
   return false;
 }
 

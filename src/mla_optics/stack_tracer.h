@@ -36,6 +36,7 @@ struct StackExit {
   Vec3d d{0.0};              // unit direction leaving the stack
   double throughput = 1.0;   // Fresnel (weighted mode) and wall reflectances
   int events = 0;            // surface interactions
+  bool trapped = false;      // still inside after the most events allowed (guided by TIR)
   bool towardViewer = true;  // left through the front (else back through the panel plane)
   // Where the ray last refracted at a lens surface (the lenslet that formed the image).
   bool crossedLens = false;
