@@ -213,14 +213,25 @@ TEST(OpticalStack, ADisplayFileWithOneLensArrayIsTodaysMla) {
   EXPECT_NEAR(displayInfoJson(d)["stack"]["reduced_gap_mm"].get<double>(), 4.0, 1e-12);
 }
 
-// A compound stack is analysed by `display info` (Describe) and refused by every stage (Trace)
-// until the ray tracer models it; "mla" beside "stack" is an error either way.
-TEST(OpticalStack, ACompoundStackIsDescribedButNotYetTraced) {
-  const Json stack = Json::parse(R"({"layers": [{"type": "gap", "thickness_mm": 3},
+// A flat compound stack loads for every stage: the equivalent MLA has the stack's focal length
+// and the gap runs to its principal plane H. Curved, it is analysed by `display info`
+// (Describe) and refused by every other stage (Trace) until the tracer models it. "mla" beside
+// "stack" is an error either way.
+TEST(OpticalStack, ACompoundStackIsTracedACurvedOneOnlyDescribed) {
+  Json stack = Json::parse(R"({"layers": [{"type": "gap", "thickness_mm": 3},
       {"type": "lens_array", "pitch_mm": 1.0, "material": "PMMA", "thickness_mm": 1.5, "front": {"radius_mm": -1.62}},
       {"type": "gap", "thickness_mm": 1},
       {"type": "lens_array", "pitch_mm": 1.0, "material": "PMMA", "thickness_mm": 1.5, "back": {"radius_mm": 1.62}}]})");
-  const std::string file = prototypeWithStack("compound.json", stack);
+  const Display flat = loadDisplay(prototypeWithStack("compound.json", stack));
+  EXPECT_TRUE(flat.stackTraced);
+  EXPECT_FALSE(flat.stackOnly);
+  const StackFirstOrder fo = stackFirstOrder(*flat.stack);
+  EXPECT_NEAR(*flat.mla.focalLengthMm, fo.focalLengthMm, 1e-12);
+  EXPECT_NEAR(flat.reconstructionGapMm, fo.reducedGapMm, 1e-12);
+  EXPECT_EQ(flat.mla.pitchMm, 1.0);
+
+  stack["curvature"] = {{"shape", "sphere"}, {"radius_mm", 400}};
+  const std::string file = prototypeWithStack("curved.json", stack);
   EXPECT_EQ(fixtures::expectInputError([&] { loadDisplay(file); }).key(), "stack");
   const Display d = loadDisplay(file, DisplayUse::Describe);
   EXPECT_TRUE(d.stackOnly);
