@@ -30,9 +30,8 @@ StackMla::StackMla(const Display& d, const EiLayout& L, double gapMm, FresnelMod
   if (!d.stack) throw InputError(d.file, "stack", "(none)", "a display given as an optical stack");
   if (L.lensX.empty() || L.lensY.empty()) throw InputError(d.file, "ei_count", "(no lenses)", "at least one lenslet");
   const OpticalStack s = stackAtGap(d, gapMm);
-  for (FresnelMode m : {FresnelMode::Stochastic, FresnelMode::Weighted, FresnelMode::Off})
-    tracers_[int(m)] = std::make_unique<StackTracer>(s, m, L.lensXAt(0, 0), L.lensYAt(0, 0));
-  frontZ_ = float(std::nextafter(tracers_[0]->frontZ() - gapMm, 1e30));
+  tracer_ = std::make_unique<StackTracer>(s, fresnel, L.lensXAt(0, 0), L.lensYAt(0, 0));
+  frontZ_ = float(std::nextafter(tracer_->frontZ() - gapMm, 1e30));
   for (const StackLayer& l : s.layers)
     dispersive_ = dispersive_ || (!l.material.empty() && MaterialCatalog::standard().dielectric(l.material)->isDispersive());
 }
@@ -47,10 +46,9 @@ void StackMla::lensletAt(double x, double y, int& k, int& l) const {
 }
 
 bool StackMla::traceToPanel(const Ray& ray, float lambdaNm, FresnelMode mode, Rng* rng, PanelArrival& out) const {
-  const StackTracer& tracer = *tracers_[int(mode)];
   StackExit ex;
   const Point3d o(ray.o.x, ray.o.y, double(ray.o.z) + gapMm_);
-  if (!tracer.trace(o, glm::normalize(Vec3d(ray.d)), lambdaNm, rng, ex) || ex.towardViewer) return false;
+  if (!tracer_->trace(o, glm::normalize(Vec3d(ray.d)), lambdaNm, mode, rng, ex) || ex.towardViewer) return false;
   out.p = Point3(float(ex.p.x), float(ex.p.y), float(-gapMm_));
   out.d = Vec3(ex.d);
   out.throughput = float(ex.throughput);

@@ -28,7 +28,7 @@ class StackMla final : public MlaModel {
  private:
   void lensletAt(double x, double y, int& k, int& l) const;
 
-  std::unique_ptr<StackTracer> tracers_[3];  // by FresnelMode
+  std::unique_ptr<StackTracer> tracer_;
   FresnelMode fresnel_;
   double gapMm_ = 0.0;
   float frontZ_ = 0.0f;

@@ -195,6 +195,7 @@ StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double orig
     b.maxSlope *= 1.0 + 1e-6;  // sampled: a margin for the maximum between samples
   }
   top_ = boundaries_.back().z;
+  outside_ = std::make_unique<Region>();
 }
 
 StackTracer::~StackTracer() = default;
@@ -288,7 +289,8 @@ double StackTracer::index(const Region& r, double lambdaNm) const {
   return double(r.nTable[i]) + f * double(r.nTable[i + 1] - r.nTable[i]);
 }
 
-bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Rng* rng, StackExit& out) const {
+bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, FresnelMode fresnel, Rng* rng,
+                        StackExit& out) const {
   Point3d p = o0;
   Vec3d d = d0;
   int region;
@@ -304,8 +306,7 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Rng
   Point3d entry = p;
   for (int events = 0; events < maxEvents_; ++events) {
     const bool outside = region == int(regions_.size());
-    const Region air;
-    const Region& r = outside ? air : regions_[size_t(region)];
+    const Region& r = outside ? *outside_ : regions_[size_t(region)];
     const Boundary& lower = boundaries_[size_t(region)];
     double tLow = kNone, tUp = kNone, tWall = kNone, t;
     Vec3d wallN(0.0);
@@ -319,7 +320,7 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Rng
     out.events = events + 1;
     if (tWall == tHit) {  // a barrier wall: absorbed, or reflected with its reflectance
       if (r.reflectance <= 0.0) return false;
-      if (fresnel_ == FresnelMode::Stochastic) {
+      if (fresnel == FresnelMode::Stochastic) {
         if (!rng || rng->uniformDouble() >= r.reflectance) return false;
       } else {
         out.throughput *= r.reflectance;
@@ -347,8 +348,8 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Rng
     const double cosi = -glm::dot(n, d), eta = n1 / n2, sin2t = eta * eta * (1.0 - cosi * cosi);
     const double refl = sin2t >= 1.0 ? 1.0 : fresnelReflectance(cosi, n1, n2);
     bool reflect = sin2t >= 1.0;
-    if (!reflect && fresnel_ == FresnelMode::Stochastic && rng) reflect = rng->uniformDouble() < refl;
-    if (!reflect && fresnel_ == FresnelMode::Weighted) out.throughput *= 1.0 - refl;
+    if (!reflect && fresnel == FresnelMode::Stochastic && rng) reflect = rng->uniformDouble() < refl;
+    if (!reflect && fresnel == FresnelMode::Weighted) out.throughput *= 1.0 - refl;
     if (reflect) {
       d = reflectDir(d, n);
       continue;

@@ -55,7 +55,11 @@ class StackTracer {
   // front of the stack heading -z) along unit `d` until the ray leaves the stack (true, `out`
   // holds where and which way) or is absorbed (false: an aperture sheet, a wall, too many
   // events). `rng` is needed for the stochastic Fresnel mode only.
-  bool trace(const Point3d& o, const Vec3d& d, double lambdaNm, Rng* rng, StackExit& out) const;
+  bool trace(const Point3d& o, const Vec3d& d, double lambdaNm, Rng* rng, StackExit& out) const {
+    return trace(o, d, lambdaNm, fresnel_, rng, out);
+  }
+  // The same with another Fresnel mode than the tracer's own.
+  bool trace(const Point3d& o, const Vec3d& d, double lambdaNm, FresnelMode fresnel, Rng* rng, StackExit& out) const;
 
   double frontZ() const { return top_; }
 
@@ -71,6 +75,7 @@ class StackTracer {
 
   std::vector<Boundary> boundaries_;  // boundaries_[i] below region i, boundaries_[i + 1] above
   std::vector<Region> regions_;
+  std::unique_ptr<Region> outside_;   // air in front of the stack
   FresnelMode fresnel_;
   double top_ = 0.0;
   int maxEvents_ = 64;

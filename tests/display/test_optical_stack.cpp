@@ -102,7 +102,7 @@ TEST(OpticalStack, APlateMovesTheReducedGapByItsThicknessTimesOneMinusOneOverN) 
   const StackFirstOrder plated = stackFirstOrder(stackOf(
       R"({"type": "plate", "thickness_mm": 0.7, "material": "N-BK7"}, {"type": "gap", "thickness_mm": 3}, )" + lens));
   EXPECT_NEAR(plated.focalLengthMm, bare.focalLengthMm, 1e-12);
-  EXPECT_NEAR(bare.reducedGapMm - plated.reducedGapMm * 1.0, 0.7 * (1.0 - 1.0 / nOf("N-BK7")), 1e-12);
+  EXPECT_NEAR(bare.reducedGapMm - plated.reducedGapMm, 0.7 * (1.0 - 1.0 / nOf("N-BK7")), 1e-12);
 }
 
 // Today's displays as a one-layer stack: the lenslets' panel-side principal plane H lies at the
