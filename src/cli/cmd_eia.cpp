@@ -63,7 +63,7 @@ void addEiaCommand(CLI::App& app) {
     EiaRunSettings base = o->e;
     base.colorsEncoding = o->colorsEncoding == "srgb" ? ColorEncoding::SRGB : ColorEncoding::Linear;
     base.synthesis.progress = !o->quiet;
-    base.realLens = o->realLens.resolve();
+    base.rays = o->realLens.resolve();
     EiaGiven given = o->given;
     given.seed = o->runOpts.seed;
     given.placement = placementOverride(o->place);

@@ -23,6 +23,7 @@ void addFig11Command(CLI::App& app) {
   addSetting(cmd, "field", o->s.fieldPath, "--scene");
   addSetting(cmd, "camera", o->s.camera);
   addSetting(cmd, "mla", o->mla);
+  addChoiceSetting(cmd, "chief_rays", o->s.rays.chiefRays, {ChiefRays::Pinhole, ChiefRays::Traced}, chiefRaysName);
   addSetting(cmd, "width", o->s.width);
   addSetting(cmd, "spp", o->s.spp);
   addSetting(cmd, "aperture_grid", o->s.apertureGrid);

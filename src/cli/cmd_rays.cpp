@@ -42,7 +42,7 @@ void checkCombinations(CLI::App* cmd, const RaysOpts& o) {
   }
   const DisplayArgs& d = o.display;
   if (o.inOpt->count() && (o.gapOpt->count() || d.layout || d.viewingDistanceMm || o.eiOpt->count() || d.display ||
-                           o.realLens.on))
+                           o.realLens.on || o.realLens.chiefRays))
     throw InputError("", "--in", "\"" + o.s.in + "\"",
                      "no --display, --gap-mm, --layout, --viewing-distance-mm, --ei or --real-lens with --in (the "
                      "file already holds the rays)");
@@ -51,7 +51,7 @@ void checkCombinations(CLI::App* cmd, const RaysOpts& o) {
 RayExportSettings exportSettings(const RaysOpts& o) {
   RayExportSettings s = o.s;
   if (!s.in.empty()) return s;
-  s.realLens = o.realLens.resolve();
+  s.rays = o.realLens.resolve();
   s.displayPath = o.display.display.value_or("");
   s.layout = layoutOverride(o.display);
   if (!s.forField) return s;

@@ -56,6 +56,7 @@ void addPlacementOptions(CLI::App* cmd, PlacementArgs& a) {
 }
 
 void addRealLensOptions(CLI::App* cmd, RealLensArgs& a) {
+  addSetting(cmd, "chief_rays", a.chiefRays);
   addSetting(cmd, "real_lens", a.on);
   addSetting(cmd, "real_lens_ray", a.model);
   addSetting(cmd, "wavelength_nm", a.wavelengthNm);

@@ -18,7 +18,7 @@
 #include "core/progress.h"
 #include "core/settings_table.h"
 #include "field/placement.h"
-#include "mla_optics/real_lens_rays.h"
+#include "runs/display_rays.h"
 #include "display/layout_override.h"
 #include "runs/run_file.h"
 
@@ -62,7 +62,6 @@ CLI::Option* addSetting(CLI::App* cmd, std::string_view key, T& target, const st
   }
 }
 
-
 // The option of setting `key` (flag and help from the settings table) that names one of
 // `values` by the library's own name for it (nameOf), written into `target` (an enum, or an
 // optional one: then absent means the library's choice); --help lists the names.
@@ -95,15 +94,14 @@ inline PlacementOverride placementOverride(const PlacementArgs& a) {
   return parsePlacementOverride(a.scale, a.rotate, a.translate);
 }
 
-// --real-lens, --real-lens-ray, --wavelength-nm: resolveRealLens's arguments.
+// --chief-rays, --real-lens, --real-lens-ray, --wavelength-nm: resolveDisplayRays's arguments.
 struct RealLensArgs {
   bool on = false;
-  std::optional<std::string> model;
+  std::optional<std::string> chiefRays, model;
   std::optional<double> wavelengthNm;
-  std::optional<RealLensRayOptions> resolve() const { return resolveRealLens(on, model, wavelengthNm); }
+  DisplayRayChoice resolve() const { return resolveDisplayRays(chiefRays, on, model, wavelengthNm); }
 };
 void addRealLensOptions(CLI::App* cmd, RealLensArgs& a);
-
 
 // The flag that sets a library setting ("spp" -> "--spp", "vcp_mm" -> "--vcp-mm"); a key that
 // no flag sets is returned as it is.

@@ -116,10 +116,14 @@ std::vector<SettingInfo> synthesisSettings() {
       text("real_lens", "rays",
            "Trace every pixel's ray through the real MLA (refraction at n(lambda), the physical lens centres) instead "
            "of the pinhole model; origins moved back to z = 0"),
+      choice("chief_rays", "", "pinhole,traced",
+             "Display rays: pinhole (the pinhole model's; the default for one thin lens array) or traced (each "
+             "pixel's real chief ray through the display's optical stack, its aperture stop's centre; the default "
+             "for other stacks)"),
       choice("real_lens_ray", "", "centroid,chief",
              "With --real-lens: centroid (the power centroid of each pixel's exit bundle through its lenslet) or chief "
              "(the ray through the lenslet's aperture centre)"),
-      number("wavelength_nm", "", 360, 830, "With --real-lens: the wavelength, nm"),
+      number("wavelength_nm", "", 360, 830, "With --real-lens or --chief-rays traced: the wavelength, nm"),
       number("wavelength_nm", "lens info", 360, 830, "Wavelength of the trace, nm"),
       // Outputs
       text("out", "", "Output folder"),

@@ -41,23 +41,39 @@ double firstLatticePitch(const OpticalStack& s) {
   return 0.0;
 }
 
-}  // namespace
-
-StackFirstOrder stackFirstOrder(const OpticalStack& s, double wavelengthNm) {
-  // The panel emits into the first layer's medium. Between two layers the light leaves the one
-  // through its front surface into air and enters the next through its back surface, with no
-  // air between: two layers in contact are a cemented interface, paraxially the same.
+// The system from the panel through every layer, calling `atPlane(z, m)` at each layer's back
+// and front plane. The panel emits into the first layer's medium. Between two layers the light
+// leaves the one through its front surface into air and enters the next through its back
+// surface, with no air between: two layers in contact are a cemented interface, paraxially the
+// same.
+template <class AtPlane>
+Matrix2 walkStack(const OpticalStack& s, double wavelengthNm, AtPlane&& atPlane) {
   Matrix2 m;
   double n = s.layers.empty() ? 1.0 : layerIndex(s, s.layers[0], wavelengthNm);
-  const double n0 = n;
   for (size_t i = 0; i < s.layers.size(); ++i) {
     const StackLayer& l = s.layers[i];
     const double nl = layerIndex(s, l, wavelengthNm);
     if (i > 0) m = m.then(refraction(n, 1.0, frontCurvature(s.layers[i - 1]))).then(refraction(1.0, nl, backCurvature(l)));
+    atPlane(s.layerBackZ(i), m);
     m = m.then(transfer(l.thicknessMm, nl));
+    atPlane(s.layerBackZ(i + 1), m);
     n = nl;
   }
   if (!s.layers.empty()) m = m.then(refraction(n, 1.0, frontCurvature(s.layers.back())));
+  return m;
+}
+
+}  // namespace
+
+std::vector<ParaxialPlane> stackParaxialPlanes(const OpticalStack& s, double wavelengthNm) {
+  std::vector<ParaxialPlane> planes;
+  walkStack(s, wavelengthNm, [&](double z, const Matrix2& m) { planes.push_back({z, m.a, m.b}); });
+  return planes;
+}
+
+StackFirstOrder stackFirstOrder(const OpticalStack& s, double wavelengthNm) {
+  const double n0 = s.layers.empty() ? 1.0 : layerIndex(s, s.layers[0], wavelengthNm);
+  const Matrix2 m = walkStack(s, wavelengthNm, [](double, const Matrix2&) {});
 
   StackFirstOrder fo;
   fo.wavelengthNm = wavelengthNm;

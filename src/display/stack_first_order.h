@@ -16,6 +16,7 @@
 // viewing angle is psi = 2 atan(pitch / (2 g)).
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "display/optical_stack.h"
 
@@ -40,6 +41,17 @@ struct StackFirstOrder {
 
 // Throws InputError (naming the stack's file and the layer) when a material is unknown.
 StackFirstOrder stackFirstOrder(const OpticalStack& stack, double wavelengthNm = kLambdaDNm);
+
+// Where a ray from the panel is at each layer's back and front plane, to first order: the
+// matrix entries A and B of the system from the panel (z = 0) to that plane, so that a ray
+// leaving the panel at height y0 with reduced angle n0 u0 crosses it at A y0 + B n0 u0. A ray's
+// height is continuous across a surface, so A and B do not depend on the side. Entry 2 i is
+// layer i's back plane, 2 i + 1 its front plane.
+struct ParaxialPlane {
+  double zMm = 0.0;
+  double a = 1.0, b = 0.0;
+};
+std::vector<ParaxialPlane> stackParaxialPlanes(const OpticalStack& stack, double wavelengthNm = kLambdaDNm);
 
 // Text for `inim display info`: the layers and the first-order quantities.
 std::string stackText(const OpticalStack& stack, const StackFirstOrder& fo);

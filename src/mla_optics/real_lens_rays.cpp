@@ -315,7 +315,7 @@ std::optional<RealLensRayOptions> resolveRealLens(bool on, const std::optional<s
   if (!on && (model || wavelengthNm))
     throw InputError("", model ? "real_lens_ray" : "wavelength_nm",
                      model ? "\"" + *model + "\"" : formatNumber(*wavelengthNm),
-                     "--real-lens as well (the pinhole model has no refraction)");
+                     "--real-lens or --chief-rays traced as well (the pinhole model has no refraction)");
   if (!on) return std::nullopt;
   RealLensRayOptions ro;
   if (model) ro.model = parseRealLensRayModel(*model, "real_lens_ray");

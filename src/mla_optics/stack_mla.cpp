@@ -8,12 +8,8 @@
 
 namespace inim {
 
-namespace {
-
-// The display's stack with its first air gap changed so that the panel lies `gapMm` below the
-// reconstruction gap's plane.
-OpticalStack stackAtGap(const Display& d, double gapMm) {
-  OpticalStack s = *d.stack;
+OpticalStack displayStackAtGap(const Display& d, double gapMm) {
+  OpticalStack s = d.stack ? *d.stack : stackFromMla(d.mla, d.reconstructionGapMm);
   const double delta = gapMm - d.reconstructionGapMm;
   if (std::fabs(delta) <= 1e-12) return s;
   if (s.layers.empty() || s.layers[0].kind != StackLayer::Kind::Gap || !(s.layers[0].thicknessMm + delta > 0.0))
@@ -23,13 +19,11 @@ OpticalStack stackAtGap(const Display& d, double gapMm) {
   return s;
 }
 
-}  // namespace
-
 StackMla::StackMla(const Display& d, const EiLayout& L, double gapMm, FresnelMode fresnel)
     : fresnel_(fresnel), gapMm_(gapMm), layout_(&L), pitchMm_(d.mla.pitchMm) {
   if (!d.stack) throw InputError(d.file, "stack", "(none)", "a display given as an optical stack");
   if (L.lensX.empty() || L.lensY.empty()) throw InputError(d.file, "ei_count", "(no lenses)", "at least one lenslet");
-  const OpticalStack s = stackAtGap(d, gapMm);
+  const OpticalStack s = displayStackAtGap(d, gapMm);
   tracer_ = std::make_unique<StackTracer>(s, fresnel, L.lensXAt(0, 0), L.lensYAt(0, 0));
   frontZ_ = float(std::nextafter(tracer_->frontZ() - gapMm, 1e30));
   for (const StackLayer& l : s.layers)

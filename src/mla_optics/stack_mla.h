@@ -12,6 +12,11 @@
 
 namespace inim {
 
+// The display's optical stack (today's MLA as one: stackFromMla) with its first air gap changed
+// so that the panel lies `gapMm` below the display frame's z = 0 (the reconstruction gap's
+// plane); InputError when there is no first air gap to change or it would vanish.
+OpticalStack displayStackAtGap(const Display& display, double gapMm);
+
 class StackMla final : public MlaModel {
  public:
   // `gapMm`: the panel's distance below the display frame's z = 0 (the display's reconstruction

@@ -13,7 +13,6 @@
 #include "core/output_file.h"
 #include "core/file_kinds.h"
 #include "core/progress.h"
-#include "mla_optics/real_mla.h"
 #include "rays/pinhole_rays.h"
 
 namespace inim {
@@ -28,15 +27,6 @@ std::string checkOutputs(const EiaRunSettings& s) {
   if (!s.preview.empty()) requireFileKind(s.preview, "preview", {FileKind::Png}, "a PNG file name (.png)");
   if (!s.sdf.empty()) requireFileKind(s.sdf, "sdf", {FileKind::Sdf, FileKind::Dat}, "a Zemax source file name (.sdf or .dat)");
   return png;
-}
-
-RaySet traceRealLensRays(const Display& d, const EiLayout& L, const RealLensRayOptions& o, RealLensRayStats* stats,
-                         bool progress) {
-  std::unique_ptr<RealMla> mla = RealMla::fromDisplay(d, L, L.gapMm);
-  ProgressBar bar("real-lens rays", uint64_t(L.numRays()), progress && ProgressBar::stderrIsTerminal());
-  RaySet rays = generateRealLensRays(L, *mla, o, stats, &bar);
-  bar.finish();
-  return rays;
 }
 
 // Each output to a temporary, written concurrently (EXR and PNG compression are single
@@ -111,10 +101,8 @@ EiaRunResult runEia(const EiaRunSettings& s, const std::function<void(const EiaR
   }
   r.display = loadDisplay(displayPathOrDefault(s.displayPath));
   r.layout = applyLayoutOverride(r.display, s.layout);
-  RealLensRayStats realStats;
-  const RaySet realRays = s.realLens ? traceRealLensRays(r.display, r.layout, *s.realLens, &realStats, synthesis.progress)
-                                     : RaySet{};
-  if (s.realLens) synthesis.displayRays = &realRays, r.realLensSummary = summaryText(*s.realLens, realStats);
+  const DisplayRays rays = displayRaysFor(r.display, r.layout, s.rays, synthesis.progress);
+  if (rays.rays) synthesis.displayRays = &*rays.rays, r.raysSummary = rays.summary;
   r.triadWavelengths = parseTriadWavelengths(r.display.panel, s.triadWavelengths, s.triadWavelengthsKey);
   if (!s.fieldColorsPath.empty())
     field = loadFieldColors(s.fieldColorsPath, synthesis.spp, size_t(r.layout.numRays()) * size_t(synthesis.spp),
@@ -126,7 +114,7 @@ EiaRunResult runEia(const EiaRunSettings& s, const std::function<void(const EiaR
   r.loadSeconds = secondsSince(t0);
   r.synthesis = synthesizeEia(r.layout, r.display.panel, *field.field, synthesis);
   const auto tw0 = std::chrono::steady_clock::now();
-  writeOutputs(s, r, *field.field, s.realLens ? &realRays : nullptr);
+  writeOutputs(s, r, *field.field, rays.rays ? &*rays.rays : nullptr);
   r.writeSeconds = secondsSince(tw0);
   return r;
 }
@@ -144,7 +132,7 @@ std::string setupText(const EiaRunResult& r, double vcpMm) {
                          formatNumber(L.gapMm).c_str(), L.panelW, L.panelH);
   t += "field:       " + r.fieldPath + " (" + fieldKindName(r.fieldKind) + ")\n";
   t += "placement:   " + r.placement.describe() + "; VCP at z = " + formatNumber(vcpMm) + " mm\n";
-  if (!r.realLensSummary.empty()) t += "rays:        " + r.realLensSummary + "\n";
+  if (!r.raysSummary.empty()) t += "rays:        " + r.raysSummary + "\n";
   return t;
 }
 

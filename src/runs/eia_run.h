@@ -13,7 +13,7 @@
 #include "field/placement.h"
 #include "field/ray_table.h"
 #include "field_files/field_factory.h"
-#include "mla_optics/real_lens_rays.h"
+#include "runs/display_rays.h"
 #include "runs/run_file.h"
 #include "display/layout_override.h"
 #include "synthesis/eia_synthesis.h"
@@ -36,7 +36,7 @@ struct EiaRunSettings {
   // inputs and set as synthesis.correction; "": synthesis.correction as given (normally none).
   std::string calibrationPath;
   std::string calibrationKey = "calibration";  // the setting an unusable calibrationPath is reported as
-  std::optional<RealLensRayOptions> realLens;  // query along the real-lens display rays
+  DisplayRayChoice rays;  // which display rays to query along (runs/display_rays.h)
   std::string triadWavelengths = "panel";
   std::string triadWavelengthsKey = "triad_wavelengths";  // the setting a bad value is reported as
   std::string out, png, preview, sdf;   // EXR; PNG ("": beside it); optional preview and SDF
@@ -48,7 +48,7 @@ struct EiaRunResult {
   std::string fieldPath;
   FieldKind fieldKind = FieldKind::AnalyticScene;
   Placement placement;
-  std::string realLensSummary;  // with real-lens rays: how they were traced
+  std::string raysSummary;  // with real-lens or traced chief rays: how they were traced
   std::string calibration = "none";  // the calibration applied (describeCalibration), or "none"
   std::string png;
   TriadWavelengths triadWavelengths;

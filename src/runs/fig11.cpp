@@ -53,6 +53,7 @@ struct Inputs {
   LoadedField field;
   std::shared_ptr<const ColourModel> calibration;  // null: none
   std::shared_ptr<const ColourModel> budgetCalibration;  // the budget's calibration rung, when given
+  DisplayRays rays;  // the EIA's display rays (none: the pinhole rays)
   CameraDescription camera;
   Placement placement;
   Transform fieldToDisplay;
@@ -67,6 +68,7 @@ Inputs loadInputs(const Fig11Settings& s) {
     if (std::none_of(all.begin(), all.end(), [&](const NamedPose& n) { return n.name == p; }))
       throw InputError("", "poses", "\"" + p + "\"", "centre, left, right, top or bottom");
   in.layout = computeLayout(in.display);
+  in.rays = displayRaysFor(in.display, in.layout, s.rays, false);
   in.field = loadField(s.fieldPath.empty() ? defaultScenePath() : s.fieldPath, "field");
   if (!s.calibrationPath.empty()) in.calibration = loadCalibration(s.calibrationPath);
   if (s.budget && !s.budgetCalibrationPath.empty())
@@ -308,6 +310,7 @@ SynthesisSettings synthesisSettings(const Fig11Settings& s, const Inputs& in) {
   ss.spp = s.eiaSpp;
   ss.seed = s.seed;
   ss.correction = in.calibration;
+  if (in.rays.rays) ss.displayRays = &*in.rays.rays;
   return ss;
 }
 

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "runs/display_rays.h"
 #include "analysis/depth_error.h"
 #include "analysis/metrics.h"
 #include "display/display.h"
@@ -39,6 +40,7 @@ struct Fig11Settings {
   std::string camera = "alvium-1800-u-500c";   // a name in optics/cameras or a file
   std::string calibrationPath;                 // .cube or .clf applied to the EIA's drive values; "": none
   MlaKind mla = MlaKind::Real;                 // of the reconstruction
+  DisplayRayChoice rays;                       // the EIA's display rays (runs/display_rays.h)
   PlacementOverride placement;                 // over the field's own placement
   int width = 648;        // view width in pixels (the sensor's pitch scales; 2592 = full)
   // The reconstructions' quadrature: 1 stratum per pixel on an 8 x 8 aperture grid, RMSE 2.5 %

@@ -135,13 +135,12 @@ std::string layoutText(const Display& d, const EiLayout& L) {
   return buf;
 }
 
-std::string realLensNotes(const Display& d, const EiLayout& L, const RealLensRayOptions& ro,
-                          const RealLensRayStats& stats) {
-  std::string notes = summaryText(ro, stats) + "\n";
+std::string raysNotes(const Display& d, const EiLayout& L, const std::string& summary) {
+  std::string notes = summary + "\n";
   if (L.kind != EiLayoutKind::Parallel) return notes;
   char note[200];
   std::snprintf(note, sizeof note,
-                "note: real-lens rays go through the physical lens centres (pitch %.6g mm), not the parallel layout's "
+                "note: real-lens and traced chief rays go through the physical lens centres (pitch %.6g mm), not the parallel layout's "
                 "EI-centred pinholes\n",
                 d.mla.pitchMm);
   return notes + note;
@@ -172,21 +171,14 @@ RayExportResult exportRays(const RayExportSettings& s) {
     checkGapMm(*s.gapMm, "", "gap_mm");
     t.layout = t.layout.withGap(*s.gapMm);
   }
-  // Real-lens rays: traced before any output is opened (a bad MLA fails here).
-  RaySet realRays;
-  RealLensRayStats stats;
-  if (s.realLens) {
-    std::unique_ptr<RealMla> mla = RealMla::fromDisplay(t.display, t.layout, t.layout.gapMm);
-    ProgressBar bar("real-lens rays", uint64_t(t.layout.numRays()));
-    realRays = generateRealLensRays(t.layout, *mla, *s.realLens, &stats, &bar);
-    bar.finish();
-    t.realRays = &realRays;
-  }
+  // Real-lens or traced chief rays: traced before any output is opened (a bad MLA fails here).
+  const DisplayRays rays = displayRaysFor(t.display, t.layout, s.rays, true);
+  if (rays.rays) t.realRays = &*rays.rays;
   t.tmp = outputs.add(s.out);
   RayExportResult r = s.forField ? writeQueryRays(t) : !s.ei.empty() ? writeEiRays(t) : writeDisplayRays(t);
   outputs.commit();
   r.what += layoutText(t.display, t.layout);
-  if (s.realLens) r.notes = realLensNotes(t.display, t.layout, *s.realLens, stats);
+  if (rays.rays) r.notes = raysNotes(t.display, t.layout, rays.summary);
   return r;
 }
 

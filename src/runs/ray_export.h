@@ -8,7 +8,7 @@
 #include <string>
 
 #include "field/placement.h"
-#include "mla_optics/real_lens_rays.h"
+#include "runs/display_rays.h"
 #include "display/layout_override.h"
 #include "synthesis/eia_synthesis.h"
 
@@ -25,7 +25,7 @@ struct RayExportSettings {
   std::string displayPath;     // "": the paper's prototype
   LayoutOverride layout;
   std::optional<double> gapMm; // generate at this panel gap instead of the generation gap
-  std::optional<RealLensRayOptions> realLens;  // the real-lens rays instead of pinhole ones
+  DisplayRayChoice rays;        // the real-lens or traced chief rays instead of pinhole ones
   std::string ei;              // "K,L": only that EI, positions relative to its lens (text only)
   // The query rays of an EIA instead (field frame, reversed display rays from the VCP).
   bool forField = false;

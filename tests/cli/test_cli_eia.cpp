@@ -362,3 +362,47 @@ TEST(CliTriads, ExportFormRoundTripAndBadSdf) {
   expectBadInput("triads export --display " + smallDisplay() + " --eia " + wrongEia + " --out " + path("w.sdf"),
                  {wrongEia, "10 x 10"}, {path("w.sdf")});
 }
+
+// A pinhole-array display (a sheet of holes at the gap on the EI pitch, no lens): its EIA from
+// each pixel's chief ray traced through the stack (the default for a stack that is not one thin
+// lens array) is the pinhole model's EIA. The rays agree to float rounding (1e-7), so every
+// pixel agrees to 1e-4 of the brightest; the default is the traced one, byte for byte.
+// `--chief-rays` takes pinhole or traced and not --real-lens.
+TEST(CliEia, APinholeArrayDisplaysTracedEiaIsThePinholeModels) {
+  Json j = Json::parse(smallDisplayJson(11, 9, 9));  // EIs of 0.9 mm on the 0.9 mm lens pitch
+  j.erase("mla");
+  j.erase("reconstruction_gap_mm");
+  j["stack"] = Json::parse(R"({"layers": [{"type": "gap", "thickness_mm": 3.0},
+      {"type": "apertures", "pitch_mm": 0.9, "hole_mm": 0.1}]})");
+  const std::string display = path("pinhole_sheet.json");
+  writeText(display, j.dump(2));
+  const std::string scene = "";  // the default scene
+  const std::string traced = path("sheet_traced.exr"), pinhole = path("sheet_pinhole.exr"), dflt = path("sheet.exr");
+  Result r = run("eia --display " + display + scene + " --chief-rays traced --out " + traced);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("chief rays traced through the stack"), std::string::npos) << r.output;
+  ASSERT_EQ(run("eia --display " + display + scene + " --chief-rays pinhole --out " + pinhole).status, 0);
+  ASSERT_EQ(run("eia --display " + display + scene + " --out " + dflt).status, 0);
+  const Image a = readImage(traced), b = readImage(pinhole), c = readImage(dflt);
+  ASSERT_EQ(a.data.size(), b.data.size());
+  float peak = 0.0f, worst = 0.0f;
+  size_t differ = 0, lit = 0;
+  for (size_t i = 0; i < a.data.size(); ++i) {
+    peak = std::max(peak, b.data[i]);
+    worst = std::max(worst, std::fabs(a.data[i] - b.data[i]));
+    differ += a.data[i] != b.data[i];
+    lit += b.data[i] > 0.0f;
+  }
+  EXPECT_GT(lit, a.data.size() / 20);  // the sphere shows
+  EXPECT_LT(worst, 1e-4f * peak);
+  EXPECT_GT(differ, 0u);  // rounding does show: the two runs did trace different rays
+  EXPECT_EQ(a.data, c.data);
+
+  const std::string out = path("sheet_bad.exr");
+  expectBadInput("eia --display " + display + scene + " --chief-rays sideways --out " + out,
+                 {"--chief-rays", "sideways"}, {out});
+  expectBadInput("eia --display " + display + scene + " --chief-rays traced --real-lens --out " + out,
+                 {"--chief-rays", "--real-lens"}, {out});
+  expectBadInput("eia --display " + smallDisplay() + scene + " --wavelength-nm 500 --out " + out,
+                 {"--wavelength-nm", "500"}, {out});
+}
