@@ -229,7 +229,8 @@ std::vector<SettingInfo> viewSettings() {
            "removed, the noise floor (budget.json, budget.csv, budget.png)"),
       text("budget_rungs", "",
            "Only these budget rungs (comma separated): ideal, +subpixels, +real_mla, +cover_glass, +colour_chain, "
-           "+calibration, -subpixels, -real_mla, -cover_glass, -colour_chain"),
+           "+calibration, -subpixels, -real_mla, -cover_glass, -colour_chain; a stack display's +apertures, +barriers, "
+           "-apertures, -barriers"),
       text("budget_calibration", "",
            "The budget's calibration rung: a .cube or .clf from inim calibrate (default: --calibration)"),
       number("budget_spp", "", 1, kMaxSpp,

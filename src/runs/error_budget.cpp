@@ -54,10 +54,32 @@ std::string skipReason(const BudgetScene& s, const BudgetRung& r) {
   return "";
 }
 
-// A rung's display: the scene's, its panel's subpixels uniform pixels without the subpixel rung.
+bool hasLayer(const Display& d, StackLayer::Kind kind) {
+  return d.stackTraced && d.stack &&
+         std::any_of(d.stack->layers.begin(), d.stack->layers.end(), [&](const StackLayer& l) { return l.kind == kind; });
+}
+
+// The stack without the layers of `kind`: air of the same thickness, or nothing when thin.
+void clearLayers(OpticalStack& s, StackLayer::Kind kind) {
+  std::vector<StackLayer> kept;
+  for (StackLayer l : s.layers) {
+    if (l.kind == kind) {
+      if (!(l.thicknessMm > 0.0)) continue;
+      l.kind = StackLayer::Kind::Gap;
+      l.material.clear();
+    }
+    kept.push_back(std::move(l));
+  }
+  s.layers = std::move(kept);
+}
+
+// A rung's display: the scene's, its panel's subpixels uniform pixels without the subpixel rung,
+// its stack's sheets or walls air without their rungs.
 Display rungDescription(const BudgetScene& s, const BudgetRung& r) {
   Display d = *s.display;
   if (!r.subpixels) d.panel.subpixels = uniformPixelLayout();
+  if (d.stack && !r.apertures) clearLayers(*d.stack, StackLayer::Kind::Apertures);
+  if (d.stack && !r.barriers) clearLayers(*d.stack, StackLayer::Kind::Barriers);
   return d;
 }
 
@@ -80,14 +102,19 @@ DisplayModel rungDisplay(const BudgetScene& s, const BudgetRung& r,
 }
 
 // A rung's optics (what its panels are seen through).
-std::string opticsKey(const BudgetRung& r) { return std::string(r.realMla ? "r" : "i") + (r.coverGlass ? "g" : "n"); }
+std::string opticsKey(const BudgetRung& r) {
+  return std::string(r.realMla ? "r" : "i") + (r.realMla && !r.apertures ? "-a" : "") +
+         (r.realMla && !r.barriers ? "-b" : "") + (r.coverGlass ? "g" : "n");
+}
 
 // A rung's optics and panel (what a render depends on besides the sensor).
 std::string geometryKey(const BudgetRung& r) {
   return std::string(r.subpixels ? "s" : "u") + opticsKey(r) + (r.calibrated ? "c" : "e");
 }
 
-bool isFullChain(const BudgetRung& r) { return r.subpixels && r.realMla && r.coverGlass && r.colourChain && !r.calibrated; }
+bool isFullChain(const BudgetRung& r) {
+  return r.subpixels && r.realMla && r.coverGlass && r.colourChain && !r.calibrated && r.apertures && r.barriers;
+}
 
 // The renders of one pose, each once: through the camera's sensor, and, for the rungs without
 // the colour chain, through the observer (by sensorSwap when exact, else rendered). Rungs that
@@ -204,17 +231,40 @@ Image transformedRgb(const Image& img, const glm::dmat3& m) {
   return out;
 }
 
-std::vector<BudgetRung> budgetRungs() {
-  return {rung("ideal", "ideal display", false, false, false, false),
-          rung("+subpixels", "+ subpixels", true, false, false, false),
-          rung("+real_mla", "+ real MLA", true, true, false, false),
-          rung("+cover_glass", "+ cover glass", true, true, true, false),
-          rung("+colour_chain", "+ colour chain (full)", true, true, true, true),
-          rung("+calibration", "+ calibration", true, true, true, true, true),
-          rung("-subpixels", "full - subpixels", false, true, true, true),
-          rung("-real_mla", "full - real MLA", true, false, true, true),
-          rung("-cover_glass", "full - cover glass", true, true, false, true),
-          rung("-colour_chain", "full - colour chain", true, true, true, false)};
+std::vector<BudgetRung> budgetRungs(const Display* display) {
+  std::vector<BudgetRung> ladder = {rung("ideal", "ideal display", false, false, false, false),
+                                    rung("+subpixels", "+ subpixels", true, false, false, false),
+                                    rung("+real_mla", "+ real MLA", true, true, false, false),
+                                    rung("+cover_glass", "+ cover glass", true, true, true, false),
+                                    rung("+colour_chain", "+ colour chain (full)", true, true, true, true),
+                                    rung("+calibration", "+ calibration", true, true, true, true, true)};
+  std::vector<BudgetRung> removals = {rung("-subpixels", "full - subpixels", false, true, true, true),
+                                      rung("-real_mla", "full - real MLA", true, false, true, true),
+                                      rung("-cover_glass", "full - cover glass", true, true, false, true),
+                                      rung("-colour_chain", "full - colour chain", true, true, true, false)};
+  const bool apertures = display && hasLayer(*display, StackLayer::Kind::Apertures);
+  const bool barriers = display && hasLayer(*display, StackLayer::Kind::Barriers);
+  if (!apertures && !barriers) {
+    ladder.insert(ladder.end(), removals.begin(), removals.end());
+    return ladder;
+  }
+  // The stack's sheets and walls, one kind per rung, after its refracting layers.
+  ladder[2].label = "+ real MLA (lens arrays, plates)";
+  ladder[2].apertures = !apertures, ladder[2].barriers = !barriers;
+  auto at = ladder.begin() + 3;
+  if (apertures) {
+    at = ladder.insert(at, rung("+apertures", "+ aperture sheets", true, true, false, false)) + 1;
+    at[-1].barriers = !barriers;
+    removals.push_back(rung("-apertures", "full - aperture sheets", true, true, true, true));
+    removals.back().apertures = false;
+  }
+  if (barriers) {
+    ladder.insert(at, rung("+barriers", "+ barrier walls", true, true, false, false));
+    removals.push_back(rung("-barriers", "full - barrier walls", true, true, true, true));
+    removals.back().barriers = false;
+  }
+  ladder.insert(ladder.end(), removals.begin(), removals.end());
+  return ladder;
 }
 
 BudgetRung fullChainRung() { return rung("full", "full chain", true, true, true, true); }
@@ -233,14 +283,18 @@ std::vector<RungPanel> fullChainCompanions(const BudgetScene& s, const std::vect
   return out;
 }
 
-std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names) {
-  const std::vector<BudgetRung> all = budgetRungs();
+std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names, const Display* display) {
+  const std::vector<BudgetRung> all = budgetRungs(display);
+  // The names any display may have (a stack's rungs are named before its display is loaded).
+  std::vector<std::string> valid;
+  for (const BudgetRung& r : budgetRungs()) valid.push_back(r.name);
+  valid.insert(valid.end(), {"+apertures", "+barriers", "-apertures", "-barriers"});
   std::vector<BudgetRung> out;
   for (const std::string& n : names)
-    if (std::none_of(all.begin(), all.end(), [&](const BudgetRung& r) { return r.name == n; })) {
-      std::string valid;
-      for (const BudgetRung& r : all) valid += (valid.empty() ? "" : ", ") + r.name;
-      throw InputError("", "budget_rungs", "\"" + n + "\"", "one of " + valid);
+    if (std::find(valid.begin(), valid.end(), n) == valid.end()) {
+      std::string list;
+      for (const std::string& v : valid) list += (list.empty() ? "" : ", ") + v;
+      throw InputError("", "budget_rungs", "\"" + n + "\"", "one of " + list);
     }
   for (const BudgetRung& r : all)
     if (std::find(names.begin(), names.end(), r.name) != names.end()) out.push_back(r);

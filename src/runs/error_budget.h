@@ -12,6 +12,11 @@
 //   + colour chain    the panel's spectra seen by the camera's sensor: the full chain
 //   + calibration     the same with the panel-side correction of `inim calibrate` on the EIA
 //
+// A display given as an optical stack with aperture sheets or barrier walls gets a rung for each
+// of those layer kinds after "+ real MLA" (which then refracts through the stack's lens arrays
+// and plates only, the sheets and walls standing as air): "+ apertures", "+ barriers", and their
+// removals from the full chain ("-apertures", "-barriers"). Other displays' ladders are as above.
+//
 // Effects interact, so the budget also removes one effect at a time from the full chain. The
 // noise floor is the reference against a reference of another seed. A rung that cannot be
 // built (no cover glass to add, no calibration given) is skipped with a note.
@@ -40,13 +45,17 @@ struct BudgetRung {
   std::string label;   // for tables and plots
   bool subpixels = false, realMla = false, coverGlass = false, colourChain = false, calibrated = false;
   bool removal = false;  // the full chain with one effect removed (not a ladder rung)
+  // With the real MLA of a stack display: its aperture sheets and barrier walls (else air).
+  bool apertures = true, barriers = true;
 };
 
-// The ladder, in order, then the full chain with one effect removed.
-std::vector<BudgetRung> budgetRungs();
+// The ladder, in order, then the full chain with one effect removed; with `display`, its stack's
+// layer-kind rungs too.
+std::vector<BudgetRung> budgetRungs(const Display* display = nullptr);
 // Rung names for options, in budgetRungs() order: InputError (key "budget_rungs") listing the
-// valid ones for an unknown name.
-std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names);
+// valid ones for an unknown name; a stack's rung names are valid for any display and select
+// nothing on one without those layers.
+std::vector<BudgetRung> selectRungs(const std::vector<std::string>& names, const Display* display = nullptr);
 
 // What every rung of a run shares.
 struct BudgetScene {

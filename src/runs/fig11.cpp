@@ -73,7 +73,7 @@ Inputs loadInputs(const Fig11Settings& s) {
   if (!s.calibrationPath.empty()) in.calibration = loadCalibration(s.calibrationPath);
   if (s.budget && !s.budgetCalibrationPath.empty())
     in.budgetCalibration = loadCalibration(s.budgetCalibrationPath, "budget_calibration");
-  if (s.budget && !s.budgetRungs.empty()) selectRungs(s.budgetRungs);  // unknown names fail here
+  if (s.budget && !s.budgetRungs.empty()) selectRungs(s.budgetRungs, &in.display);  // unknown names fail here
   in.camera = loadCameraDescription(s.camera);
   in.placement = resolvePlacement(in.field.placement, s.placement);
   in.fieldToDisplay = in.placement.toDisplay();
@@ -209,7 +209,7 @@ class Fig11Run {
 
   bool viewIsFullChain() const { return !in_.calibration && s_.mla == MlaKind::Real && s_.budgetSpp == s_.spp; }
   std::vector<BudgetRung> budgetRungList() const {
-    return s_.budgetRungs.empty() ? budgetRungs() : selectRungs(s_.budgetRungs);
+    return s_.budgetRungs.empty() ? budgetRungs(&in_.display) : selectRungs(s_.budgetRungs, &in_.display);
   }
 
   // The view against the band-limited reference: metrics, and error against depth.

@@ -159,6 +159,7 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
   std::vector<RungPanel> carried;
   auto carry = [&](const ViewRunResult& v, const DisplayModel& dm) {
     std::vector<const PanelEmitter*> panels;
+    in.rungs = rs.budgetRungs.empty() ? budgetRungs(&v.display) : selectRungs(rs.budgetRungs, &v.display);
     if (!rs.budget || !viewIsFullChain(s, rs)) return panels;
     if (in.calibration) calibrated = correctedEia(v.layout, *v.eia, *in.calibration);
     const BudgetScene scene{&v.display, &v.layout, v.eia.get(), calibrated ? &*calibrated : nullptr, &v.camera.desc,

@@ -64,6 +64,37 @@ TEST(ErrorBudget, UnknownRungNamesListTheValidOnes) {
   EXPECT_EQ(selectRungs({"-cover_glass"}).at(0).coverGlass, false);
 }
 
+// A stack display with aperture sheets or barrier walls gets one rung per such layer kind after
+// the real MLA, which then refracts without them, and their removals; other displays keep the
+// ladder of today (the default display's budget files stay the same).
+TEST(ErrorBudget, AStacksSheetsAndWallsGetARungEach) {
+  auto names = [](const std::vector<BudgetRung>& rungs) {
+    std::string s;
+    for (const BudgetRung& r : rungs) s += r.name + " ";
+    return s;
+  };
+  const Display paper = loadDisplay(displayPathOrDefault(""));
+  EXPECT_EQ(names(budgetRungs(&paper)), names(budgetRungs()));
+  const Display barrier = loadDisplay(dataPath("optics/displays/barrier-mla.json"));
+  const std::vector<BudgetRung> b = budgetRungs(&barrier);
+  EXPECT_EQ(names(b),
+            "ideal +subpixels +real_mla +barriers +cover_glass +colour_chain +calibration -subpixels -real_mla "
+            "-cover_glass -colour_chain -barriers ");
+  EXPECT_FALSE(b[2].barriers);  // + real MLA: the lenses without the walls
+  EXPECT_TRUE(b[3].barriers && b[3].realMla && !b[3].coverGlass);
+  EXPECT_TRUE(b[4].barriers);
+  EXPECT_FALSE(b.back().barriers);
+  EXPECT_TRUE(b.back().coverGlass && b.back().colourChain && b.back().removal);
+  const Display compound = loadDisplay(dataPath("optics/displays/compound-symmetric.json"));
+  const std::vector<BudgetRung> c = budgetRungs(&compound);
+  EXPECT_EQ(c[3].name, "+apertures");
+  EXPECT_FALSE(c[2].apertures);
+  EXPECT_EQ(c.back().name, "-apertures");
+  // Their names are valid before a display is known and select nothing on a display without them.
+  EXPECT_TRUE(selectRungs({"+barriers"}, &paper).empty());
+  EXPECT_EQ(selectRungs({"-barriers", "ideal"}, &barrier).size(), 2u);
+}
+
 // The default display showing random drive values (every channel matters everywhere), seen at
 // 0 deg by the default camera at 40 px, rendered at 1 stratum on a 4 x 4 aperture grid.
 struct RandomDriveScene {
