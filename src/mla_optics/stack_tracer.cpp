@@ -195,6 +195,7 @@ StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double orig
     b.maxSlope *= 1.0 + 1e-6;  // sampled: a margin for the maximum between samples
   }
   top_ = boundaries_.back().z;
+  front_ = std::max(top_, boundaries_.back().zMax);
   outside_ = std::make_unique<Region>();
 }
 

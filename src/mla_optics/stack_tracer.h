@@ -61,7 +61,9 @@ class StackTracer {
   // The same with another Fresnel mode than the tracer's own.
   bool trace(const Point3d& o, const Vec3d& d, double lambdaNm, FresnelMode fresnel, Rng* rng, StackExit& out) const;
 
-  double frontZ() const { return top_; }
+  // The stack's highest point: its front plane, or above it the tips of a last surface that
+  // bulges out toward the viewer (a concave front face's cell borders).
+  double frontZ() const { return front_; }
 
  private:
   struct Boundary;
@@ -77,7 +79,7 @@ class StackTracer {
   std::vector<Region> regions_;
   std::unique_ptr<Region> outside_;   // air in front of the stack
   FresnelMode fresnel_;
-  double top_ = 0.0;
+  double top_ = 0.0, front_ = 0.0;
   int maxEvents_ = 64;
 };
 

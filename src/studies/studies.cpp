@@ -24,6 +24,8 @@ const std::vector<StudyInfo>& studies() {
       {"colour-calibration", "the colour chain characterised, corrected and verified on hold-out colours",
        runColourCalibration},
       {"gap-tradeoff", "the gap swept around f: error budget and error against depth per gap", runGapTradeoff},
+      {"architectures", "the catalogue's display architectures compared: first order, budget, error against depth",
+       runArchitectures},
   };
   return table;
 }

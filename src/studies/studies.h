@@ -79,6 +79,13 @@ StudyReport runColourCalibration(const StudyOptions& o);
 // every gap; the toed-in ramp's error lower near L than far from it.
 StudyReport runGapTradeoff(const StudyOptions& o);
 
+// `inim study architectures`: the catalogue's display architectures (today's MLA, double MLA,
+// compound array, pinhole array, barrier MLA) through inim fig11 with their error budgets on the
+// default scene: first order, budget, error against depth side by side, contact sheets, which
+// suits which scene depth. Bound: for each, the ideal display no worse than the full chain
+// beyond the noise floor.
+StudyReport runArchitectures(const StudyOptions& o);
+
 // The studies, in one table (studies.cpp): adding a study is its file, its run function
 // declared above and a line in the table; `inim study --help` and the docs read the table.
 struct StudyInfo {

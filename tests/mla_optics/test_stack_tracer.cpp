@@ -247,3 +247,30 @@ TEST(StackTracer, ALosslessStackConservesEnergy) {
   EXPECT_GT(back, 0);                 // some rays were turned back by total internal reflection
   EXPECT_LT(trapped, 20000 / 100);    // a few are guided (an endless lattice has no edge to leave by)
 }
+
+// A last surface concave toward the viewer rises above the stack's front plane at its cell
+// borders: the tracer's front (where a view's rays enter) is its highest point, so rays from in
+// front meet the whole face. Lossless, near normal incidence: every ray over the cell reaches
+// the panel, and one crossing the face at a cell corner enters it above the front plane.
+TEST(StackTracer, AConcaveFrontFaceAboveTheFrontPlaneIsMet) {
+  OpticalStack s;
+  StackLayer a = layer(StackLayer::Kind::LensArray, 0.5);
+  a.material = "PMMA";
+  a.apertureMm = 1.0;
+  a.front.radiusMm = 4.0;  // concave toward the viewer
+  s.layers = {layer(StackLayer::Kind::Gap, 2.0), a};
+  const StackTracer tracer(s);
+  const double rise = 4.0 - std::sqrt(16.0 - 0.5);  // the sag at a cell corner (r^2 = 0.5)
+  EXPECT_NEAR(tracer.frontZ(), 2.5 + rise, 1e-6);
+  int reached = 0;
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 0; j <= 20; ++j) {
+      StackExit ex;
+      const Point3d o(-0.5 + i * 0.05, -0.5 + j * 0.05, tracer.frontZ() + 1e-6);  // just above, as a view starts
+      if (tracer.trace(o, glm::normalize(Vec3d(0.01, 0.02, -1.0)), 550.0, nullptr, ex) && !ex.towardViewer) ++reached;
+    }
+  EXPECT_EQ(reached, 21 * 21);
+  StackExit corner;
+  ASSERT_TRUE(tracer.trace({0.5, 0.5, tracer.frontZ() + 1.0}, {0.0, 0.0, -1.0}, 550.0, nullptr, corner));
+  EXPECT_FALSE(corner.towardViewer);
+}

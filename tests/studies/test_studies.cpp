@@ -335,3 +335,27 @@ TEST(Studies, GapTradeoffIdealDisplayIsNeverWorseThanTheFullChain) {
   EXPECT_EQ(report.find("g = 3.30 mm** gives the lowest"), std::string::npos);
   if (!std::getenv("INIM_STUDIES_KEEP")) fs::remove_all(dir);
 }
+
+// The architectures study in its quick form (the five catalogue designs at 128 px, the 0° pose):
+// for every design the ideal display is no worse than the full chain beyond the noise floor;
+// each design's contact sheet and budget are kept beside the report, the stack designs' budgets
+// have their layer kinds' rungs, and no run's scratch folder is left behind.
+TEST(Studies, ArchitecturesCompareTheCatalogueDesigns) {
+  const fs::path dir = tempDir("architectures");
+  StudyOptions o{dir.string(), ""};
+  o.quick = true;
+  const StudyReport r = runArchitectures(o);
+  ASSERT_EQ(r.values.size(), 5u);
+  for (const auto& v : r.values) EXPECT_TRUE(v.pass) << v.name << " measured " << v.measured << " bound " << v.predicted;
+  EXPECT_TRUE(r.pass);
+  expectFiles(r);
+  EXPECT_FALSE(fs::exists(dir / ".architectures-runs"));
+  for (const char* d : {"paper-prototype", "double-mla-convex-concave", "compound-symmetric", "pinhole-array", "barrier-mla"})
+    for (const char* what : {"contact_sheet_", "budget_"})
+      EXPECT_TRUE(fs::exists(dir / (std::string(what) + d + ".png"))) << what << d;
+  std::ifstream f(dir / "report.md");
+  const std::string report((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("largest step is +barriers"), std::string::npos);  // the walls' light
+  EXPECT_NE(report.find("largest step is +apertures"), std::string::npos);  // the pinholes' light
+  if (!std::getenv("INIM_STUDIES_KEEP")) fs::remove_all(dir);
+}
