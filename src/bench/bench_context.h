@@ -32,6 +32,9 @@ struct EiaContext {
 };
 EiaContext& eiaContext();
 
+// The "rays/s" counter: `rays` per iteration.
+void setRaysPerSecond(benchmark::State& state, size_t rays);
+
 // The default display's EIA of `field` (auto exposure, 1 sample per display ray): rays/s and
 // peak memory.
 void eiaLoop(benchmark::State& state, const Field& field);

@@ -42,6 +42,7 @@ void printRatios(std::map<std::string, double>& rps) {
   ratio("splats/guitar-query-960x540", "splats/guitar-bare-embree-boxes-960x540");
   ratio("mla/stack-one-layer", "mla/real-one-layer");
   ratio("mla/stack-two-layers", "mla/real-one-layer");
+  ratio("eia/two-layers-traced-chief-rays", "eia/one-layer-pinhole-rays");
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 // as a one-layer stack and on a two-layer compound stack (the MLA and a mirrored copy 1 mm in
 // front). The ratios (rays/s, same run) are the cost of describing a display as a stack, and
 // of a second lens layer (the optical-stack issue's target: view through two layers within 2x).
+// eia/: the default scene's EIA on the default display and on it with the two-layer stack (the
+// chief rays traced through both layers, as `inim eia` makes them; target within 1.5x).
 #include <memory>
 #include <vector>
 
@@ -10,6 +12,8 @@
 #include "core/rng.h"
 #include "mla_optics/real_mla.h"
 #include "mla_optics/stack_mla.h"
+#include "runs/display_rays.h"
+#include "synthesis/eia_synthesis.h"
 
 namespace inim::bench {
 
@@ -20,6 +24,7 @@ constexpr int kRays = 200000;
 struct MlaContext {
   std::vector<Ray> rays;  // toward the panel from 10 mm above it, within 10 degrees, over the centre
   std::unique_ptr<MlaModel> real, stackOne, stackTwo;
+  Display two;  // the default display with the two-layer stack
 };
 
 MlaContext& mlaContext() {
@@ -41,6 +46,7 @@ MlaContext& mlaContext() {
     two.stack->layers.push_back(air);
     two.stack->layers.push_back(mirrored);
     m.stackTwo = std::make_unique<StackMla>(two, e.layout, g, FresnelMode::Weighted);
+    m.two = two;
     Rng rng(1, 1);
     for (int i = 0; i < kRays; ++i) {
       Ray r;
@@ -66,9 +72,29 @@ void traceAll(benchmark::State& state, const MlaModel& mla) {
   state.counters["rays/s"] = benchmark::Counter(double(kRays), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// The default scene's EIA (1 spp) on display `d` with the default display's layout, along the
+// display rays `inim eia` uses for it (made in every iteration): the pinhole rays for one thin
+// layer, the chief rays traced through the stack for two.
+void eiaAlong(benchmark::State& state, const Display& d) {
+  const EiaContext& e = eiaContext();
+  SynthesisSettings s;
+  s.progress = false;
+  for (auto _ : state) {
+    const DisplayRays rays = displayRaysFor(d, e.layout, DisplayRayChoice{}, false);
+    s.displayRays = rays.rays ? &*rays.rays : nullptr;
+    SynthesisResult r = synthesizeEia(e.layout, d.panel, *sceneContext().scene, s);
+    benchmark::DoNotOptimize(r.eia.data.data());
+  }
+  setRaysPerSecond(state, size_t(e.layout.numRays()));
+}
+
 }  // namespace
 
 void registerMlaBenchmarks(double minTime) {
+  // Whole EIAs: three runs each, the ratio of their rays/s the cost of a second lens layer.
+  for (auto [name, fn] : {std::pair{"eia/one-layer-pinhole-rays", +[](benchmark::State& s) { eiaAlong(s, eiaContext().display); }},
+                          {"eia/two-layers-traced-chief-rays", +[](benchmark::State& s) { eiaAlong(s, mlaContext().two); }}})
+    benchmark::RegisterBenchmark(name, fn)->UseRealTime()->Unit(benchmark::kMillisecond)->Iterations(3);
   registerTimed("mla/real-one-layer", [](benchmark::State& s) { traceAll(s, *mlaContext().real); }, false, minTime);
   registerTimed("mla/stack-one-layer", [](benchmark::State& s) { traceAll(s, *mlaContext().stackOne); }, false, minTime);
   registerTimed("mla/stack-two-layers", [](benchmark::State& s) { traceAll(s, *mlaContext().stackTwo); }, false, minTime);

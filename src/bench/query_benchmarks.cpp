@@ -66,13 +66,13 @@ double peakRssMiB() {
   return double(u.ru_maxrss) / 1024.0;  // Linux reports KiB
 }
 
-namespace {
-
-constexpr int64_t kChunk = 4096;
-
 void setRaysPerSecond(benchmark::State& state, size_t rays) {
   state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsIterationInvariantRate);
 }
+
+namespace {
+
+constexpr int64_t kChunk = 4096;
 
 void benchEia(benchmark::State& state) { eiaLoop(state, *sceneContext().scene); }
 

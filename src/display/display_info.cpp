@@ -388,6 +388,9 @@ Json stackJson(const OpticalStack& s, const StackFirstOrder& fo) {
   j["reduced_gap_mm"] = fo.reducedGapMm;
   j["reference_plane_mm"] = fo.referencePlaneMm ? Json(*fo.referencePlaneMm) : Json(nullptr);
   j["viewing_angle_deg"] = fo.viewingAngleDeg;
+  j["depth_range_mm"] = {-2.0 * fo.reducedGapMm, 2.0 * fo.reducedGapMm};
+  if (const std::optional<ApertureStop> stop = findApertureStop(s, fo.wavelengthNm))
+    j["aperture_stop"] = {{"layer", stop->what}, {"z_mm", stop->zMm}, {"radius_mm", stop->radiusMm}};
   return j;
 }
 

@@ -320,7 +320,6 @@ std::string untracedPart(const OpticalStack& s, std::string& key) {
     const StackLayer& l = s.layers[i];
     key = l.keyPath;
     if (l.kind != StackLayer::Kind::LensArray) continue;
-    if (i > 0 && s.layers[i - 1].kind == StackLayer::Kind::LensArray) return "a lens array in contact with another";
     const bool cellAperture = l.apertureMm >= l.pitchMm * (1.0 - 1e-12) &&
                               (l.aperture == Mla::Aperture::Square) == (l.lattice == Mla::Lattice::Square);
     if (!cellAperture && l.aperture != Mla::Aperture::Circle)

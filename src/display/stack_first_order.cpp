@@ -1,5 +1,6 @@
 #include "display/stack_first_order.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -63,6 +64,28 @@ Matrix2 walkStack(const OpticalStack& s, double wavelengthNm, AtPlane&& atPlane)
   return m;
 }
 
+// The inscribed radius of each clear aperture layer i has, with the plane it limits at.
+struct Opening {
+  double radiusMm;
+  bool front;
+  const char* what;
+};
+
+std::vector<Opening> openingsOf(const StackLayer& l) {
+  switch (l.kind) {
+    case StackLayer::Kind::LensArray: {
+      const double r = (l.apertureMm > 0.0 ? l.apertureMm : l.pitchMm) / 2.0;
+      return {{r, false, ".back"}, {r, true, ".front"}};
+    }
+    case StackLayer::Kind::Apertures: return {{l.holeMm / 2.0, false, " (holes)"}, {l.holeMm / 2.0, true, " (holes)"}};
+    case StackLayer::Kind::Barriers: {
+      const double r = (l.pitchMm - l.wallMm) / 2.0;
+      return {{r, false, " (barrier cells, back end)"}, {r, true, " (barrier cells, front end)"}};
+    }
+    default: return {};
+  }
+}
+
 }  // namespace
 
 std::vector<ParaxialPlane> stackParaxialPlanes(const OpticalStack& s, double wavelengthNm) {
@@ -97,6 +120,22 @@ StackFirstOrder stackFirstOrder(const OpticalStack& s, double wavelengthNm) {
   return fo;
 }
 
+std::optional<ApertureStop> findApertureStop(const OpticalStack& s, double wavelengthNm) {
+  const std::vector<ParaxialPlane> planes = stackParaxialPlanes(s, wavelengthNm);
+  std::optional<ApertureStop> best;
+  double bestRatio = 0.0;
+  for (size_t i = 0; i < s.layers.size(); ++i)
+    for (const Opening& o : openingsOf(s.layers[i])) {
+      const ParaxialPlane& p = planes[2 * i + (o.front ? 1 : 0)];
+      if (!(std::fabs(p.b) > 1e-12) || !(o.radiusMm > 0.0)) continue;
+      const double ratio = o.radiusMm / std::fabs(p.b);
+      if (best && !(ratio < bestRatio * (1.0 - 1e-12))) continue;
+      bestRatio = ratio;
+      best = ApertureStop{i, p.zMm, o.radiusMm, p.a, p.b, o.front, s.layers[i].keyPath + o.what};
+    }
+  return best;
+}
+
 std::string stackText(const OpticalStack& s, const StackFirstOrder& fo) {
   std::string t = formatText("Optical stack (%zu layers, panel at z = 0, + toward the viewer):\n", s.layers.size());
   for (size_t i = 0; i < s.layers.size(); ++i) {
@@ -124,6 +163,10 @@ std::string stackText(const OpticalStack& s, const StackFirstOrder& fo) {
   else
     t += "  reference image plane L               at infinity (g = f)\n";
   t += formatText("  viewing angle psi = 2 atan(P/2g)      %.3f deg\n", fo.viewingAngleDeg);
+  t += formatText("  depth range |z| <= 2g                 %.3f mm\n", 2.0 * fo.reducedGapMm);
+  if (const std::optional<ApertureStop> stop = findApertureStop(s, fo.wavelengthNm))
+    t += formatText("  aperture stop                         %s, z = %.4f mm, radius %.4f mm\n", stop->what.c_str(),
+                    stop->zMm, stop->radiusMm);
   return t;
 }
 

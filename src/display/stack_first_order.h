@@ -53,6 +53,22 @@ struct ParaxialPlane {
 };
 std::vector<ParaxialPlane> stackParaxialPlanes(const OpticalStack& stack, double wavelengthNm = kLambdaDNm);
 
+struct ApertureStop {
+  size_t layer = 0;
+  double zMm = 0.0;         // the stop's plane, from the panel
+  double radiusMm = 0.0;    // its inscribed clear radius
+  double a = 1.0, b = 0.0;  // the first-order system from the panel to the stop's plane
+  bool front = false;       // at the layer's front plane (else its back plane)
+  std::string what;         // "stack.layers[1].front", for reports
+};
+
+// The aperture stop of a lenslet column, to first order: of every clear aperture it has (each
+// lens surface's, at its vertex plane; each aperture sheet's hole; each barrier cell's opening
+// at its two ends), the one that admits the smallest cone from the lenslet's axial panel point,
+// i.e. the smallest ratio of its inscribed radius to the height B of the axial marginal ray
+// there. nullopt when no layer limits the bundle (a stack of plates and gaps).
+std::optional<ApertureStop> findApertureStop(const OpticalStack& stack, double wavelengthNm);
+
 // Text for `inim display info`: the layers and the first-order quantities.
 std::string stackText(const OpticalStack& stack, const StackFirstOrder& fo);
 

@@ -20,28 +20,6 @@ namespace {
 
 constexpr double kMissTolMm = 1e-10;
 
-// The inscribed radius of each clear aperture layer i has, with the plane it limits at.
-struct Opening {
-  double radiusMm;
-  bool front;
-  const char* what;
-};
-
-std::vector<Opening> openingsOf(const StackLayer& l) {
-  switch (l.kind) {
-    case StackLayer::Kind::LensArray: {
-      const double r = (l.apertureMm > 0.0 ? l.apertureMm : l.pitchMm) / 2.0;
-      return {{r, false, ".back"}, {r, true, ".front"}};
-    }
-    case StackLayer::Kind::Apertures: return {{l.holeMm / 2.0, false, " (holes)"}, {l.holeMm / 2.0, true, " (holes)"}};
-    case StackLayer::Kind::Barriers: {
-      const double r = (l.pitchMm - l.wallMm) / 2.0;
-      return {{r, false, " (barrier cells, back end)"}, {r, true, " (barrier cells, front end)"}};
-    }
-    default: return {};
-  }
-}
-
 double panelIndex(const OpticalStack& s, double lambdaNm) {
   if (s.layers.empty() || s.layers[0].material.empty()) return 1.0;
   return MaterialCatalog::standard().dielectric(s.layers[0].material)->n(float(lambdaNm));
@@ -148,22 +126,6 @@ class ChiefRayTable {
 };
 
 }  // namespace
-
-std::optional<ApertureStop> findApertureStop(const OpticalStack& s, double wavelengthNm) {
-  const std::vector<ParaxialPlane> planes = stackParaxialPlanes(s, wavelengthNm);
-  std::optional<ApertureStop> best;
-  double bestRatio = 0.0;
-  for (size_t i = 0; i < s.layers.size(); ++i)
-    for (const Opening& o : openingsOf(s.layers[i])) {
-      const ParaxialPlane& p = planes[2 * i + (o.front ? 1 : 0)];
-      if (!(std::fabs(p.b) > 1e-12) || !(o.radiusMm > 0.0)) continue;
-      const double ratio = o.radiusMm / std::fabs(p.b);
-      if (best && !(ratio < bestRatio * (1.0 - 1e-12))) continue;
-      bestRatio = ratio;
-      best = ApertureStop{i, p.zMm, o.radiusMm, p.a, p.b, o.front, s.layers[i].keyPath + o.what};
-    }
-  return best;
-}
 
 StackChiefRaySolver::StackChiefRaySolver(const OpticalStack& s, double originX, double originY, double wavelengthNm)
     : wavelengthNm_(wavelengthNm) {

@@ -6,11 +6,7 @@
 // is no chief ray). The pinhole model's ray (rays/pinhole_rays.h) is its first-order limit: a
 // straight line from the pixel through the lenslet's principal point.
 //
-// The stop is found to first order: of every clear aperture a lenslet column has (each lens
-// surface's, at its vertex plane; each aperture sheet's hole; each barrier cell's opening at its
-// two ends), the one that admits the smallest cone from the lenslet's axial panel point, i.e.
-// the smallest ratio of its inscribed radius to the height B of the axial marginal ray there
-// (display/stack_first_order.h). The ray through it is solved by Newton's method on the two
+// The stop is found to first order (findApertureStop, display/stack_first_order.h). The ray through it is solved by Newton's method on the two
 // launch slopes, the stop crossing of the real ray through the layers below the stop matched to
 // the lenslet's axis within 1e-10 mm.
 //
@@ -26,24 +22,13 @@
 #include "core/geometry.h"
 #include "display/ei_layout.h"
 #include "display/optical_stack.h"
+#include "display/stack_first_order.h"
 #include "rays/ray_set.h"
 
 namespace inim {
 
 class ProgressBar;
 class StackTracer;
-
-struct ApertureStop {
-  size_t layer = 0;
-  double zMm = 0.0;         // the stop's plane, from the panel
-  double radiusMm = 0.0;    // its inscribed clear radius
-  double a = 1.0, b = 0.0;  // the first-order system from the panel to the stop's plane
-  bool front = false;       // at the layer's front plane (else its back plane)
-  std::string what;         // "stack.layers[1].front", for reports
-};
-
-// nullopt when no layer limits the bundle (a stack of plates and gaps).
-std::optional<ApertureStop> findApertureStop(const OpticalStack& stack, double wavelengthNm);
 
 struct TracedChiefRayOptions {
   double wavelengthNm = kLambdaDNm;

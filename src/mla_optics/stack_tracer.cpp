@@ -153,6 +153,15 @@ StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double orig
       const IorPtr ior = catalog.dielectric(l.material);
       for (int nm = 300; nm <= 1000; ++nm) r.nTable.push_back(ior->n(float(nm)));
     }
+    if (l.kind == StackLayer::Kind::LensArray && i > 0 && s.layers[i - 1].kind == StackLayer::Kind::LensArray &&
+        (boundaries_.back().surface || !l.back.isPlane())) {
+      // In contact with the lens array before it, a curved face between them: the air they
+      // enclose (no thickness where the vertices touch) is a region of its own.
+      regions_.push_back(Region{});
+      Boundary air;
+      air.z = z0;
+      boundaries_.push_back(air);
+    }
     if (l.kind == StackLayer::Kind::LensArray) {
       Boundary& back = boundaries_.back();
       if (!l.back.isPlane()) back.surface = l.back;

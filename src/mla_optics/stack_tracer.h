@@ -18,9 +18,11 @@
 // graze) can be missed; the cell-walking tracer of real_mla.h is exact for the one lens array
 // it models, and tests check the two agree.
 //
+// Two lens arrays in contact: the air between their faces (curved on either side) is a region
+// of its own, bounded by both; flat on both sides, the faces are a cemented interface.
+//
 // Not modelled yet (the constructor refuses with an InputError naming the layer): curved
-// stacks, lens arrays with square or hex apertures smaller than their cells (their walls), and
-// two lens arrays in contact.
+// stacks, and lens arrays with square or hex apertures smaller than their cells (their walls).
 #include <memory>
 #include <vector>
 

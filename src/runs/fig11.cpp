@@ -401,6 +401,7 @@ void renderAndComparePoses(Fig11Run& run, const std::vector<NamedPose>& poses, c
 // The contact sheet, the metrics and the depth figure; then every output lands together.
 void writeSheetAndMetrics(Fig11Run& run, const Fig11Settings& s, const Inputs& in) {
   ContactSheetOptions cso;
+  cso.maxImageWidth = s.sheetImageWidth;
   cso.heading = "inim fig11: " + fs::path(in.field.path).filename().string() + " on " + in.display.name + ", " +
                 in.camera.name + " at " + std::to_string(int(std::lround(in.distanceMm))) + " mm, MLA " +
                 mlaKindName(s.mla) + ", calibration " +

@@ -43,6 +43,7 @@ struct Fig11Settings {
   DisplayRayChoice rays;                       // the EIA's display rays (runs/display_rays.h)
   PlacementOverride placement;                 // over the field's own placement
   int width = 648;        // view width in pixels (the sensor's pitch scales; 2592 = full)
+  int sheetImageWidth = 0;  // > 0: the contact sheet's images downscaled (area average) to this width
   // The reconstructions' quadrature: 1 stratum per pixel on an 8 x 8 aperture grid, RMSE 2.5 %
   // of the mean against 16 strata on 32 x 32 at 648 px (2 strata: 2.2 % in 1.5 x the time; `inim
   // bench --filter '^view/' --view-estimators quadrature --view-spp 1 2 --view-grid 8

@@ -74,11 +74,13 @@ DesignRun runDesign(const StudyOptions& o, const Design& design, const fs::path&
   run.depthRangeMm = g.depthRangeMm;
   if (!d.stack) run.focalMm = lensletFocus(d.mla).focalLengthMm;
   else if (const StackFirstOrder fo = stackFirstOrder(*d.stack); !fo.afocal) run.focalMm = fo.focalLengthMm;
+  else run.lMm.reset();  // no power (a pinhole sheet): it forms no image of the panel
   Fig11Settings s;
   s.display = d;
   s.outDir = (scratch / design.stem).string();
   s.budget = true;
   s.budgetRungs = ladderOf(d);
+  s.sheetImageWidth = 324;  // the sheets kept in the repository: half the views' width
   if (o.quick) {
     s.width = 128;
     s.eiaSpp = 1;
@@ -101,7 +103,7 @@ DesignRun runDesign(const StudyOptions& o, const Design& design, const fs::path&
   return run;
 }
 
-std::string lText(const DesignRun& r) { return r.lMm ? fixed(*r.lMm, 1) : std::string("∞"); }
+std::string lText(const DesignRun& r) { return r.lMm ? fixed(*r.lMm, 1) : r.focalMm ? std::string("∞") : std::string("none"); }
 
 // Pixel-weighted mean CIEDE2000 of the bins whose centre lies in [zLo, zHi); NaN when none.
 double bandError(const std::vector<DepthBin>& bins, double zLo, double zHi) {

@@ -398,6 +398,13 @@ TEST(CliEia, APinholeArrayDisplaysTracedEiaIsThePinholeModels) {
   EXPECT_GT(differ, 0u);  // rounding does show: the two runs did trace different rays
   EXPECT_EQ(a.data, c.data);
 
+  // `inim rays` writes the same traced rays.
+  const std::string raysOut = path("sheet.irays");
+  r = run("rays --display " + display + " --chief-rays traced --out " + raysOut);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("stop stack.layers[1] (holes)"), std::string::npos) << r.output;
+  EXPECT_EQ(readRayBinary(raysOut).size(), size_t(11 * 9 * 9 * 9));
+
   const std::string out = path("sheet_bad.exr");
   expectBadInput("eia --display " + display + scene + " --chief-rays sideways --out " + out,
                  {"--chief-rays", "sideways"}, {out});

@@ -57,6 +57,32 @@ TEST(CliPlace, RunFileFlagsAndJobGiveTheSameEiaBytes) {
   EXPECT_EQ(fixtures::readBytes(dir.path("a.png")), fixtures::readBytes(dir.path("out/job.png")));
 }
 
+// On a display given as a compound stack, the page's "write EIA" job makes the EIA `inim eia`
+// makes from its run file: along the chief rays traced through the stack.
+TEST(CliPlace, AStackDisplaysJobIsTheTracedEiaOfItsRunFile) {
+  ScratchDir dir("cli_place_stack");
+  Json j = Json::parse(smallDisplayJson(11, 9, 9));
+  j.erase("mla");
+  j.erase("reconstruction_gap_mm");
+  j["stack"] = Json::parse(R"({"layers": [{"type": "gap", "thickness_mm": 2.5},
+      {"type": "lens_array", "pitch_mm": 0.9, "material": "PMMA", "thickness_mm": 1.0, "front": {"radius_mm": -2.0}},
+      {"type": "gap", "thickness_mm": 0.8},
+      {"type": "lens_array", "pitch_mm": 0.9, "material": "PMMA", "thickness_mm": 1.0, "back": {"radius_mm": 2.0}}]})");
+  PlaceJobInput in;
+  in.fieldPath = data("scenes/test/point-sphere.json");
+  in.state.display = dir.path("compound.json");
+  writeText(in.state.display, j.dump(2));
+  in.state.placement.translateMm = Vec3d(0.0, 0.0, 4.0);
+  ASSERT_EQ(writeRunFileJob(in, dir.path("out"), "run"), std::vector<std::string>{"run.json"});
+  const CliResult a = runInim("eia --run " + dir.path("out/run.json") + " --out " + dir.path("a.exr"));
+  ASSERT_EQ(a.status, 0) << a.output;
+  EXPECT_NE(a.output.find("chief rays traced through the stack"), std::string::npos) << a.output;
+  writeEiaJob(in, dir.path("out"), "job", false);
+  const std::string eia = fixtures::readBytes(dir.path("a.exr"));
+  ASSERT_FALSE(eia.empty());
+  EXPECT_EQ(eia, fixtures::readBytes(dir.path("out/job.exr")));
+}
+
 TEST(CliPlace, PrintsOneUrlWithATokenAndStopsOnSigint) {
   ScratchDir dir("cli_place_url");
   int fds[2];

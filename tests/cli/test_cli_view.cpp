@@ -234,6 +234,11 @@ TEST(CliView, ACompoundStackDisplayRunsEiaAndView) {
   double sum = 0.0;
   for (float v : view.data) sum += v;
   EXPECT_GT(sum, 0.0);  // the scene shows through both arrays
+  // Calibration through the chain works through the stack too.
+  const std::string cal = path("compound_calibration");
+  r = runInim("calibrate --display " + display + " --poses centre --distance-mm 40 --width 48 --out " + cal);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(cal + "/panel_correction.cube"));
 
   j["stack"]["curvature"] = {{"shape", "cylinder"}, {"radius_mm", 200}};
   const std::string curved = fixtures::scratchFile("curved.json", j.dump(2));

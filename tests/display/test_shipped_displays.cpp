@@ -8,7 +8,9 @@
 
 #include "core/output_file.h"
 #include "display/display.h"
+#include "display/display_info.h"
 #include "display/ei_layout.h"
+#include "display/stack_first_order.h"
 
 using namespace inim;
 
@@ -34,4 +36,34 @@ TEST(ShippedDisplays, ToedInPrototypeCentresEachEiOnItsLensletSeenFromTheViewer)
   // The EI pitch is P (1 + g/D) on average: 25.6 px here, not the paper's 25.
   const double pitch = (L.pixelCentreX(L.eiCol0.back()) - L.pixelCentreX(L.eiCol0.front())) / (L.eiCols - 1);
   EXPECT_NEAR(pitch, L.lensPitchMm * (1.0 + g / D), L.pixelMm / (L.eiCols - 1));
+}
+
+// The catalogue of stack designs (optics/displays, optics/README.md): each loads for tracing on
+// the shipped panel, its EIs on the panel, with an aperture stop and the first order its file
+// states: the compound array's 68.6 deg viewing angle through the cover glass (Wen et al.'s), the
+// double MLA's longer focal length than its convex array's 3.3 mm, the pinhole sheet afocal at
+// 3.3 mm, the barrier MLA's lenslets at the paper's 4 mm gap.
+TEST(ShippedDisplays, TheStackCatalogueLoadsWithItsStatedFirstOrder) {
+  auto load = [](const char* name) { return loadDisplay(dataPath(std::string("optics/displays/") + name + ".json")); };
+  for (const char* name : {"double-mla-convex-concave", "compound-symmetric", "pinhole-array", "barrier-mla"}) {
+    const Display d = load(name);
+    EXPECT_TRUE(d.stackTraced) << name;
+    EXPECT_EQ(d.panel.name, load("paper-prototype").panel.name) << name;
+    ASSERT_TRUE(d.stack) << name;
+    EXPECT_TRUE(findApertureStop(*d.stack, kLambdaDNm).has_value()) << name;
+    EXPECT_FALSE(d.assumptions.empty()) << name;
+    const EiLayout L = computeLayout(d);
+    EXPECT_LE(L.eiaW, L.panelW) << name;
+    EXPECT_LE(L.eiaH, L.panelH) << name;
+  }
+  const GapInfo compound = derive(load("compound-symmetric")).reconstruction;
+  ASSERT_TRUE(compound.opticalViewingAngleDeg.has_value());
+  EXPECT_NEAR(*compound.opticalViewingAngleDeg, 68.6, 0.1);
+  const StackFirstOrder dbl = stackFirstOrder(*load("double-mla-convex-concave").stack);
+  EXPECT_GT(dbl.focalLengthMm, 3.3);
+  EXPECT_LT(*dbl.referencePlaneMm, 0.0);  // the panel inside the focal length: a virtual image
+  const Display pinhole = load("pinhole-array");
+  EXPECT_TRUE(stackFirstOrder(*pinhole.stack).afocal);
+  EXPECT_NEAR(pinhole.reconstructionGapMm, 3.3, 1e-12);
+  EXPECT_NEAR(load("barrier-mla").reconstructionGapMm, 4.0, 1e-3);
 }
