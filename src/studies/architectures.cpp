@@ -10,6 +10,7 @@
 
 #include "analysis/depth_error.h"
 #include "analysis/plot.h"
+#include "core/error.h"
 #include "core/format.h"
 #include "core/output_file.h"
 #include "display/display_info.h"
@@ -223,6 +224,9 @@ void keepPictures(ReportWriter& w, const fs::path& scratch, const DesignRun& r) 
 }  // namespace
 
 StudyReport runArchitectures(const StudyOptions& o) {
+  if (!o.displayPath.empty())
+    throw InputError("", "display", "\"" + o.displayPath + "\"",
+                     "no --display: the study compares the catalogue's designs (optics/displays)");
   ReportWriter w("architectures", o, "display architectures compared on the default scene");
   const fs::path scratch = fs::path(o.outDir) / ".architectures-runs";
   std::vector<DesignRun> runs;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "core/parallel.h"
 #include "display/stack_first_order.h"
 #include "mla_optics/real_lens_rays.h"
 #include "mla_optics/stack_chief_rays.h"
@@ -172,4 +173,45 @@ TEST(StackChiefRays, AStackWithoutAStopIsRefused) {
     EXPECT_NE(std::string(e.what()).find("plates.json"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("stack"), std::string::npos) << e.what();
   }
+}
+
+// Hard case: EIs (1 mm) wider than the lenslets' cells (0.9 mm) behind barrier walls, so the
+// outer EIs' outer pixels lie under a neighbour's cell and their chief ray toward their own
+// lenslet runs into a wall. Those pixels fall back to the pinhole ray through their lens centre
+// (counted), every ray is finite and unit, and the rays are the same bytes on 1 and 2 threads.
+TEST(StackChiefRays, PixelsWhoseChiefRayAWallStopsFallBackToThePinholeRay) {
+  const Display d = smallDisplay(9, 7, 10, 0.1, 0.9, 3.0, 3.3);
+  const EiLayout L = computeLayout(d);
+  OpticalStack s;
+  StackLayer walls = layer(StackLayer::Kind::Barriers, 1.5, 0.9);
+  walls.wallMm = 0.05;
+  StackLayer lens = layer(StackLayer::Kind::LensArray, 1.0, 0.9);
+  lens.material = "PMMA";
+  lens.apertureMm = 0.9;
+  lens.front.radiusMm = -1.5;
+  s.layers = {layer(StackLayer::Kind::Gap, 0.3, 0.0), walls, layer(StackLayer::Kind::Gap, 1.0, 0.0), lens};
+  TracedChiefRayStats st;
+  RaySet one, two;
+  {
+    ThreadLimit t(1);
+    one = generateTracedChiefRays(L, s, 3.3, TracedChiefRayOptions{}, &st);
+  }
+  {
+    ThreadLimit t(2);
+    two = generateTracedChiefRays(L, s, 3.3, TracedChiefRayOptions{});
+  }
+  EXPECT_GT(st.fallback, 0u);
+  EXPECT_LT(st.fallback, st.rays / 2);
+  EXPECT_EQ(one.ox, two.ox);
+  EXPECT_EQ(one.dx, two.dx);
+  EXPECT_EQ(one.dz, two.dz);
+  size_t pinholeLike = 0;
+  for (size_t i = 0; i < one.size(); ++i) {
+    const Ray r = one.ray(i);
+    ASSERT_TRUE(std::isfinite(r.o.x) && std::isfinite(r.d.x) && std::isfinite(r.d.z)) << i;
+    ASSERT_NEAR(glm::length(r.d), 1.0f, 1e-6f) << i;
+    ASSERT_GT(r.d.z, 0.0f) << i;
+    pinholeLike += r.o.z == 0.0f && std::fabs(std::fmod(std::fabs(r.o.x) + 1e-6, 0.9)) < 1e-5;
+  }
+  EXPECT_GE(pinholeLike, st.fallback);  // the fallbacks start on a lens centre
 }
