@@ -101,8 +101,8 @@ static void readStack(const JsonObject& o, Display& d, DisplayUse use) {
   if (const std::string part = untracedPart(*d.stack, key); !part.empty()) {
     if (use == DisplayUse::Trace)
       throw InputError(d.file, key, part,
-                       "optics the ray tracer models so far: flat stacks without walls between caps (`inim display "
-                       "info` analyses any stack)");
+                       "optics the ray tracer models so far: flat stacks whose clear apertures have their cells' "
+                       "shape or are round (`inim display info` analyses any stack)");
     d.stackOnly = true;
     return;
   }

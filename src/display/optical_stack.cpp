@@ -320,10 +320,9 @@ std::string untracedPart(const OpticalStack& s, std::string& key) {
     const StackLayer& l = s.layers[i];
     key = l.keyPath;
     if (l.kind != StackLayer::Kind::LensArray) continue;
-    const bool cellAperture = l.apertureMm >= l.pitchMm * (1.0 - 1e-12) &&
-                              (l.aperture == Mla::Aperture::Square) == (l.lattice == Mla::Lattice::Square);
-    if (!cellAperture && l.aperture != Mla::Aperture::Circle)
-      return "a square or hex clear aperture smaller than its cell (walls between caps)";
+    const bool cellShape = (l.aperture == Mla::Aperture::Square) == (l.lattice == Mla::Lattice::Square);
+    if (!cellShape && l.aperture != Mla::Aperture::Circle)
+      return "a clear aperture of another shape than its cell (a square on a hex lattice or a hex on a square one)";
   }
   key.clear();
   return "";

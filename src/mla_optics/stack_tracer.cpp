@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -120,6 +121,11 @@ struct StackTracer::Boundary {
   double rClamp = 0.0;            // the clear aperture's radius: flat land beyond it
   double zMin = 0.0, zMax = 0.0;  // the slab the surface fills
   double maxSlope = 0.0;          // largest |dz/dr| over the aperture: the height field's Lipschitz bound
+  // A clear aperture of the cell's shape but smaller (square on a square lattice, hex on a hex
+  // one): the cap inside it, flat land at the cap's corner height outside, vertical walls between.
+  bool walled = false;
+  Mla::Aperture apertureShape = Mla::Aperture::Square;
+  double apertureMm = 0.0;
   // An aperture sheet of no thickness lies on this boundary: rays pass only through its holes.
   bool masked = false;
   Lattice maskLattice;
@@ -167,11 +173,16 @@ StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double orig
       if (!l.back.isPlane()) back.surface = l.back;
       back.lattice = latticeOf(l, originX, originY);
       back.rClamp = l.apertureRadiusMm();
+      const bool walls = l.aperture != Mla::Aperture::Circle && l.apertureMm < l.pitchMm * (1.0 - 1e-12);
+      back.walled = walls && !l.back.isPlane();
+      back.apertureShape = l.aperture, back.apertureMm = l.apertureMm;
       Boundary front;
       front.z = z1;
       if (!l.front.isPlane()) front.surface = l.front;
       front.lattice = back.lattice;
       front.rClamp = back.rClamp;
+      front.walled = walls && !l.front.isPlane();
+      front.apertureShape = l.aperture, front.apertureMm = l.apertureMm;
       boundaries_.push_back(front);
     } else {
       Boundary next;
@@ -215,6 +226,7 @@ double StackTracer::boundaryZ(const Boundary& b, double x, double y) const {
   if (!b.surface) return b.z;
   double cx, cy;
   b.lattice.centre(x, y, cx, cy);
+  if (b.walled && !insideShape(b.apertureShape, b.apertureMm, x - cx, y - cy)) return b.z + b.surface->sag(b.rClamp).value_or(0.0);
   const double r = std::min(std::hypot(x - cx, y - cy), b.rClamp);
   return b.z + b.surface->sag(r).value_or(0.0);
 }
@@ -225,11 +237,14 @@ Vec3d StackTracer::boundaryNormal(const Boundary& b, double x, double y) const {
   b.lattice.centre(x, y, cx, cy);
   const double r = std::hypot(x - cx, y - cy);
   if (r >= b.rClamp || r == 0.0) return {0.0, 0.0, 1.0};
+  if (b.walled && !insideShape(b.apertureShape, b.apertureMm, x - cx, y - cy)) return {0.0, 0.0, 1.0};  // the land
   const double slope = sagSlope(*b.surface, r);
   return glm::normalize(Vec3d(-slope * (x - cx) / r, -slope * (y - cy) / r, 1.0));
 }
 
-bool StackTracer::hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t) const {
+bool StackTracer::hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t,
+                              Vec3d* wallNormal) const {
+  if (wallNormal) *wallNormal = Vec3d(0.0);
   // The part of the ray inside the slab [zMin, zMax].
   double t0 = kEps, t1 = tMax;
   if (d.z != 0.0) {
@@ -255,16 +270,64 @@ bool StackTracer::hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& 
   if (across > 0.0) minStep = b.lattice.pitch / 128.0 / across;
   if (d.z != 0.0) minStep = std::min(minStep, depth / 16.0 / std::fabs(d.z));
   if (!std::isfinite(minStep)) return false;
-  double a = t0, fa = f(a);
-  while (a < t1) {
-    const double c = std::min(a + std::max(minStep, std::fabs(fa) / lipschitz), t1), fc = f(c);
-    if ((fa <= 0.0) != (fc <= 0.0)) {
-      t = refineRoot(f, a, fa, c, fc);
+  auto march = [&](double a, double c) {
+    double fa = f(a);
+    while (a < c) {
+      const double m = std::min(a + std::max(minStep, std::fabs(fa) / lipschitz), c), fm = f(m);
+      if ((fa <= 0.0) != (fm <= 0.0)) {
+        t = refineRoot(f, a, fa, m, fm);
+        return true;
+      }
+      a = m, fa = fm;
+    }
+    return false;
+  };
+  if (!b.walled) return march(t0, t1);
+  // Walls: f jumps where the ray crosses an aperture's edge. March between those crossings; at
+  // each, a change of sign across it is a hit on the wall there.
+  std::vector<WallCrossing> cuts = wallCrossings(b, o, d, t0, t1);
+  double a = t0;
+  for (const WallCrossing& cut : cuts) {
+    const double before = std::max(a, cut.t - 1e-10);
+    if (march(a, before)) return true;
+    const double fl = f(before), fr = f(std::min(cut.t + 1e-10, t1));
+    if ((fl <= 0.0) != (fr <= 0.0)) {
+      t = cut.t;
+      if (wallNormal && std::fabs(fl - fr) > 1e-9) *wallNormal = cut.normal;
       return true;
     }
-    a = c, fa = fc;
+    a = std::min(cut.t + 1e-10, t1);
   }
-  return false;
+  return march(a, t1);
+}
+
+std::vector<StackTracer::WallCrossing> StackTracer::wallCrossings(const Boundary& b, const Point3d& o, const Vec3d& d,
+                                                                  double t0, double t1) const {
+  // The lines of every aperture edge: for each side normal e of the cell shape, the cells'
+  // centres project onto e on a 1D lattice of spacing s (square: P; hex: P / 2), and the edges lie
+  // at h = a / 2 either side of each; a crossing that is on no aperture's edge only splits the
+  // march.
+  std::array<Vec3d, 6> sides;
+  const int count = cellSides(b.lattice.hex, sides);
+  const double s = b.lattice.hex ? b.lattice.pitch / 2.0 : b.lattice.pitch, h = b.apertureMm / 2.0;
+  std::vector<WallCrossing> cuts;
+  for (int i = 0; i < count; i += (b.lattice.hex ? 1 : 2)) {  // e and -e give the same lines
+    const Vec3d& e = sides[i];
+    const double du = e.x * d.x + e.y * d.y;
+    if (std::fabs(du) < 1e-15) continue;
+    const double base = e.x * b.lattice.ox + e.y * b.lattice.oy;
+    const double ua = e.x * (o.x + t0 * d.x) + e.y * (o.y + t0 * d.y) - base, ub = ua + du * (t1 - t0);
+    const double lo = std::min(ua, ub), hi = std::max(ua, ub);
+    for (double m = std::floor((lo - h) / s); m * s - h <= hi; m += 1.0)
+      for (double side : {-1.0, 1.0}) {
+        const double v = m * s + side * h;
+        if (v < lo || v > hi) continue;
+        cuts.push_back({t0 + (v - ua) / du, side * e});
+        if (cuts.size() > 4096) break;  // a grazing ray over very many cells: the rest unsplit
+      }
+  }
+  std::sort(cuts.begin(), cuts.end(), [](const WallCrossing& x, const WallCrossing& y) { return x.t < y.t; });
+  return cuts;
 }
 
 bool StackTracer::hitWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double& t, Vec3d& n) const {
@@ -319,9 +382,9 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Fre
     const Region& r = outside ? *outside_ : regions_[size_t(region)];
     const Boundary& lower = boundaries_[size_t(region)];
     double tLow = kNone, tUp = kNone, tWall = kNone, t;
-    Vec3d wallN(0.0);
-    if (hitBoundary(lower, p, d, kNone, t)) tLow = t;
-    if (!outside && hitBoundary(boundaries_[size_t(region) + 1], p, d, tLow, t)) tUp = t;
+    Vec3d wallN(0.0), lowCap(0.0), upCap(0.0);  // a lens array's wall between caps, when one is hit
+    if (hitBoundary(lower, p, d, kNone, t, &lowCap)) tLow = t;
+    if (!outside && hitBoundary(boundaries_[size_t(region) + 1], p, d, tLow, t, &upCap)) tUp = t;
     if (outside && !(tLow < kNone)) return false;  // leaving in front without meeting the stack
     if (r.kind == Region::Kind::Walls && hitWall(r, p, d, std::min(tLow, tUp), t, wallN)) tWall = t;
     const double tHit = std::min({tLow, tUp, tWall});
@@ -353,7 +416,8 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Fre
       return true;
     }
     const double n1 = index(r, lambdaNm), n2 = next < int(regions_.size()) ? index(regions_[size_t(next)], lambdaNm) : 1.0;
-    Vec3d n = boundaryNormal(b, p.x, p.y);
+    const Vec3d& capWall = goingUp ? upCap : lowCap;
+    Vec3d n = capWall != Vec3d(0.0) ? capWall : boundaryNormal(b, p.x, p.y);
     if (glm::dot(n, d) > 0.0) n = -n;  // facing the incoming ray
     const double cosi = -glm::dot(n, d), eta = n1 / n2, sin2t = eta * eta * (1.0 - cosi * cosi);
     const double refl = sin2t >= 1.0 ? 1.0 : fresnelReflectance(cosi, n1, n2);
@@ -368,7 +432,9 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Fre
     if (b.surface) out.crossedLens = true, out.lensXMm = p.x, out.lensYMm = p.y;
     region = next;
     entry = p;
-    if (region == int(regions_.size())) {
+    // Out in front, unless the ray meets the front surface again (a neighbouring cap that rises
+    // above where it left): then on it goes, in through that cap.
+    if (double again; region == int(regions_.size()) && !hitBoundary(boundaries_.back(), p, d, kNone, again)) {
       out.p = p, out.d = d, out.towardViewer = true;
       return true;
     }

@@ -21,8 +21,13 @@
 // Two lens arrays in contact: the air between their faces (curved on either side) is a region
 // of its own, bounded by both; flat on both sides, the faces are a cemented interface.
 //
+// A lens array whose square (hex) clear aperture is smaller than its square (hex) cell: the cap
+// inside the aperture, flat land outside it at the cap's height at the aperture's corners, and
+// vertical walls between the cap's edge and the land, refracting like any face. The march
+// splits at every line an aperture edge lies on; a change of sign across one is a wall hit.
+//
 // Not modelled yet (the constructor refuses with an InputError naming the layer): curved
-// stacks, and lens arrays with square or hex apertures smaller than their cells (their walls).
+// stacks, and clear apertures of another shape than the cell's (a square on a hex lattice).
 #include <memory>
 #include <vector>
 
@@ -72,7 +77,16 @@ class StackTracer {
   struct Region;
   double boundaryZ(const Boundary& b, double x, double y) const;
   Vec3d boundaryNormal(const Boundary& b, double x, double y) const;  // unit, +z side up
-  bool hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t) const;
+  // Where the ray meets boundary b within tMax; on a wall between a lens array's caps, its
+  // horizontal normal in *wallNormal (else zero).
+  bool hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t,
+                   Vec3d* wallNormal = nullptr) const;
+  struct WallCrossing {
+    double t;
+    Vec3d normal;  // the aperture edge's outward normal, were the line an edge
+  };
+  std::vector<WallCrossing> wallCrossings(const Boundary& b, const Point3d& o, const Vec3d& d, double t0,
+                                          double t1) const;
   bool hitWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double& t, Vec3d& n) const;
   bool passesSheet(const Region& r, const Point3d& a, const Point3d& b) const;
   double index(const Region& r, double lambdaNm) const;

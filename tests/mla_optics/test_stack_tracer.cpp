@@ -190,14 +190,16 @@ TEST(StackTracer, RefusesWhatItDoesNotModelYet) {
   lens.material = "PMMA";
   lens.keyPath = "stack.layers[1]";
   lens.front.radiusMm = -1.62;
-  lens.apertureMm = 0.8;  // a square aperture smaller than the cell: walls between the caps
+  lens.aperture = Mla::Aperture::Hex;  // a hex aperture on a square lattice
+  lens.apertureMm = 0.8;
   s.layers = {layer(StackLayer::Kind::Gap, 3.0), lens};
   try {
     StackTracer t(s);
-    FAIL() << "walls between caps accepted";
+    FAIL() << "a hex aperture on a square lattice accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.key(), "stack.layers[1]");
   }
+  s.layers[1].aperture = Mla::Aperture::Square;
   s.layers[1].apertureMm = 1.0;
   s.curvature = StackCurvature{StackCurvature::Shape::Sphere, 300.0};
   EXPECT_THROW(StackTracer{s}, InputError);
@@ -307,4 +309,57 @@ TEST(StackTracer, AConcaveFrontFaceAboveTheFrontPlaneIsMet) {
   StackExit corner;
   ASSERT_TRUE(tracer.trace({0.5, 0.5, tracer.frontZ() + 1.0}, {0.0, 0.0, -1.0}, 550.0, nullptr, corner));
   EXPECT_FALSE(corner.towardViewer);
+}
+
+// Lenslets whose square clear aperture (0.8 mm) is smaller than their 1 mm cells: caps inside,
+// flat land at the caps' corner height outside, vertical walls between. A ray through the land at
+// normal incidence passes straight, as through a plate; rays hit the walls (the exits differ
+// from the same array without walls); every path is reversible (traced back from where it left,
+// a ray returns to its panel point, to 1e-7 mm; this needs rays that leave a cap to re-enter a
+// neighbour that rises in their way); and with Fresnel off the energy is conserved.
+TEST(StackTracer, WallsBetweenCapsRefractAndConserveEnergy) {
+  auto stack = [](double aperture) {
+    OpticalStack s;
+    StackLayer lens = layer(StackLayer::Kind::LensArray, 1.2);
+    lens.material = "PMMA";
+    lens.aperture = Mla::Aperture::Square;
+    lens.apertureMm = aperture;
+    lens.front.radiusMm = -1.0;
+    s.layers = {layer(StackLayer::Kind::Gap, 2.0), lens};
+    return s;
+  };
+  const StackTracer walled(stack(0.8)), open(stack(1.0));
+  StackExit land;
+  ASSERT_TRUE(walled.trace({0.45, 0.45, 0.0}, {0.0, 0.0, 1.0}, 550.0, nullptr, land));
+  EXPECT_TRUE(land.towardViewer);
+  EXPECT_NEAR(glm::length(land.d - Vec3d(0.0, 0.0, 1.0)), 0.0, 1e-12);
+  // Whether the ray that left at `a` returns, traced back from just in front, to (o, -d).
+  auto retraces = [](const StackTracer& t, const StackExit& a, const Point3d& o, const Vec3d& d) {
+    StackExit back;
+    const Point3d start = a.p + a.d * (std::max(0.0, (t.frontZ() - a.p.z) / a.d.z) + 1e-6);
+    if (!t.trace(start, -a.d, 550.0, nullptr, back) || back.towardViewer) return false;
+    const Point3d at = back.p + back.d * (-back.p.z / back.d.z);  // on the panel plane
+    return std::hypot(at.x - o.x, at.y - o.y) < 1e-7 && glm::length(back.d + d) < 1e-7;
+  };
+  Rng rng(3, 4);
+  int differ = 0, left[2] = {0, 0}, reversed[2] = {0, 0};
+  double energyOut = 0.0;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {
+    const double theta = 50.0 * M_PI / 180.0 * std::sqrt(rng.uniformDouble()), phi = 2.0 * M_PI * rng.uniformDouble();
+    const Vec3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    const Point3d o(-1.0 + 2.0 * rng.uniformDouble(), -1.0 + 2.0 * rng.uniformDouble(), 0.0);
+    StackExit a, b;
+    const bool ra = walled.trace(o, d, 550.0, nullptr, a), rb = open.trace(o, d, 550.0, nullptr, b);
+    if (ra || a.trapped) energyOut += a.throughput;
+    if (ra != rb || (ra && glm::length(a.d - b.d) > 1e-6)) ++differ;
+    if (ra && a.towardViewer) ++left[0], reversed[0] += retraces(walled, a, o, d);
+    if (rb && b.towardViewer) ++left[1], reversed[1] += retraces(open, b, o, d);
+  }
+  EXPECT_GT(differ, n / 50);  // the walls and the land change what the caps did
+  for (int k : {0, 1}) {
+    EXPECT_GT(left[k], n / 2);
+    EXPECT_GE(reversed[k], left[k] - left[k] / 100) << k;  // all but long TIR-guided paths (20+ events)
+  }
+  EXPECT_NEAR(energyOut / n, 1.0, 1e-6);
 }
