@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "core/rng.h"
 #include "display/stack_first_order.h"
@@ -35,6 +36,18 @@ StackLayer layer(StackLayer::Kind kind, double thickness) {
   l.thicknessMm = thickness;
   l.pitchMm = 1.0;
   return l;
+}
+
+// Two PMMA plano-convex arrays 1.5 mm thick on 1 mm square cells, caps facing: the first's
+// toward the viewer (R 1.62 mm), the second's toward the panel (R 2.4 mm).
+std::pair<StackLayer, StackLayer> facingArrays() {
+  StackLayer a = layer(StackLayer::Kind::LensArray, 1.5), b = a;
+  a.material = b.material = "PMMA";
+  a.aperture = b.aperture = Mla::Aperture::Square;
+  a.apertureMm = b.apertureMm = 1.0;
+  a.front.radiusMm = -1.62;
+  b.back.radiusMm = 2.4;
+  return {a, b};
 }
 
 }  // namespace
@@ -76,12 +89,7 @@ TEST(StackTracer, AgreesWithTheExactTracerOfTodaysMla) {
 // off a lenslet's axis cross it at the first-order front focal point F.
 TEST(StackTracer, ACompoundCellFocusesAtItsFirstOrderFocalPoint) {
   OpticalStack s;
-  StackLayer a = layer(StackLayer::Kind::LensArray, 1.5), b = a;
-  a.material = b.material = "PMMA";
-  a.aperture = b.aperture = Mla::Aperture::Square;
-  a.apertureMm = b.apertureMm = 1.0;
-  a.front.radiusMm = -1.62;
-  b.back.radiusMm = 2.4;
+  auto [a, b] = facingArrays();
   b.back.conic = -0.3;
   s.layers = {layer(StackLayer::Kind::Gap, 3.0), a, layer(StackLayer::Kind::Gap, 1.0), b};
   const StackFirstOrder fo = stackFirstOrder(s, 550.0);
@@ -99,12 +107,7 @@ TEST(StackTracer, ACompoundCellFocusesAtItsFirstOrderFocalPoint) {
 // ray through a cell's corner crosses the widest part of the air pocket and leaves.
 TEST(StackTracer, LensArraysInContactEncloseAnAirLens) {
   OpticalStack s;
-  StackLayer a = layer(StackLayer::Kind::LensArray, 1.5), b = a;
-  a.material = b.material = "PMMA";
-  a.aperture = b.aperture = Mla::Aperture::Square;
-  a.apertureMm = b.apertureMm = 1.0;
-  a.front.radiusMm = -1.62;
-  b.back.radiusMm = 2.4;
+  auto [a, b] = facingArrays();
   s.layers = {layer(StackLayer::Kind::Gap, 3.0), a, b};
   const StackFirstOrder fo = stackFirstOrder(s, 550.0);
   ASSERT_FALSE(fo.afocal);
