@@ -324,6 +324,13 @@ AreaMm EiLayout::activeArea() const {
 
 EiLayout computeLayout(const Display& d) {
   checkEisCanFit(d);
+  if (d.stack && d.stack->curvature) {
+    if (d.mla.lattice == Mla::Lattice::Hex)
+      throw InputError(d.file, "stack.layers", "a hex lattice in a curved stack", "a square lattice (curved hex arrays are not laid out yet)");
+    if (d.layout != EiLayoutKind::Parallel)
+      throw InputError(d.file, "layout", "\"" + std::string(layoutName(d.layout)) + "\"",
+                       "\"parallel\" for a curved stack: its lenslets' axes place the EIs");
+  }
   if (d.mla.lattice == Mla::Lattice::Hex) return computeHexLayout(d);
   EiLayout L = layoutFrame(d);
   L.eiW = d.eiWidthPx;
@@ -337,7 +344,19 @@ EiLayout computeLayout(const Display& d) {
   for (int l = 0; l < R; ++l) L.lensY[size_t(l)] = (0.5 * (R - 1) - l) * P;
 
   Axis ax, ay;
-  if (d.layout == EiLayoutKind::ToedIn) {
+  const bool curved = d.stack && d.stack->curvature;
+  if (curved) {
+    // Each EI centred where its lenslet's axis meets the panel (ei_layout.h): the curvature aims
+    // the lenslets; EIs that would overlap are refused.
+    double fx, fy;
+    ax = placeAxis(K, L.eiW, [&](int k) { return axisFootOnPanel(*d.stack, L.lensX[size_t(k)], 0.0, fx, fy), fx / p; });
+    ay = placeAxis(R, L.eiH, [&](int l) { return axisFootOnPanel(*d.stack, 0.0, L.lensY[size_t(l)], fx, fy), -fy / p; });
+    if (ax.minStep < L.eiW || ay.minStep < L.eiH)
+      throw InputError(d.file, "stack.curvature.radius_mm", formatNumber(d.stack->curvature->radiusMm),
+                       formatText("a curvature whose lenslet axes meet the panel at least an EI apart (%d x %d px; "
+                                  "the nearest are %d px apart)",
+                                  L.eiW, L.eiH, std::min(ax.minStep, ay.minStep)));
+  } else if (d.layout == EiLayoutKind::ToedIn) {
     double D = *d.viewingDistanceMm;
     double m = 1.0 + g / D;  // projection of the lens centre from (0, 0, D) onto z = -g
     checkToedInSpan(d, K, R, L.eiW, L.eiH, P * m / p);
@@ -374,10 +393,9 @@ EiLayout computeLayout(const Display& d) {
 
   L.pinholeX.resize(size_t(K));
   L.pinholeY.resize(size_t(R));
-  for (int k = 0; k < K; ++k)
-    L.pinholeX[size_t(k)] = d.layout == EiLayoutKind::Parallel ? L.eiCentreX(k) : L.lensX[size_t(k)];
-  for (int l = 0; l < R; ++l)
-    L.pinholeY[size_t(l)] = d.layout == EiLayoutKind::Parallel ? L.eiCentreY(l) : L.lensY[size_t(l)];
+  const bool onEis = d.layout == EiLayoutKind::Parallel && !curved;
+  for (int k = 0; k < K; ++k) L.pinholeX[size_t(k)] = onEis ? L.eiCentreX(k) : L.lensX[size_t(k)];
+  for (int l = 0; l < R; ++l) L.pinholeY[size_t(l)] = onEis ? L.eiCentreY(l) : L.lensY[size_t(l)];
   return L;
 }
 

@@ -8,6 +8,11 @@
 // has its centre at x = (c + 0.5 - W/2) p, y = (H/2 - r - 0.5) p (p = pixel pitch).
 // EI (k, l): k counts columns from the left, l rows from the top.
 //
+// Curved stacks (display/curved_frame.h; square lattices, parallel layout only): lensX / lensY
+// are the lenslets' arc coordinates on the curved array, and EI (k, l) is centred where lenslet
+// (k, l)'s axis meets the panel (a curved panel's arc coordinates); the pinholes are the lenses'
+// arc positions, the pinhole rays themselves come from mla_optics/stack_chief_rays.h.
+//
 // Lattices. Square MLAs give a separable layout: rectangular EIs of eiW x eiH pixels, EI
 // (k, l) covering EIA columns eiCol0[k] .. + eiW and rows eiRow0[l] .. + eiH, its pinhole at
 // (pinholeX[k], pinholeY[l]), its lens at (lensX[k], lensY[l]).

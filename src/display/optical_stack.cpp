@@ -164,6 +164,23 @@ void checkCurvature(const OpticalStack& s, const JsonObject& o, double panelW, d
   if (std::fabs(s.curvature->radiusMm) < half)
     throw InputError(s.file, o.keyPath("curvature") + ".radius_mm", formatText("%g", s.curvature->radiusMm),
                      formatText("a radius of at least half the array (%.4g mm)", half));
+  if (s.panelRadiusMm && std::fabs(*s.panelRadiusMm) < half)
+    throw InputError(s.file, o.keyPath("panel_radius_mm"), formatText("%g", *s.panelRadiusMm),
+                     formatText("a radius of at least half the panel (%.4g mm)", half));
+  // The innermost shell of a stack curved around a centre on its own side must not reach it.
+  const double depth = s.totalThicknessMm();
+  if (std::fabs(s.curvature->radiusMm) <= depth)
+    throw InputError(s.file, o.keyPath("curvature") + ".radius_mm", formatText("%g", s.curvature->radiusMm),
+                     formatText("a radius larger than the stack's depth (%.4g mm)", depth));
+  // The first gap at the panel's edge (cylinder) or corner (sphere), where a curved array comes
+  // nearest a flat panel or one of another radius.
+  const CurvedFrame array = s.arrayFrame(), panel = s.panelFrame();
+  const double ex = panelW / 2.0, ey = s.curvature->shape == StackCurvature::Shape::Sphere ? panelH / 2.0 : 0.0;
+  const double gapAtEdge = array.zRefMm - array.toFrame(panel.toWorld(ex, ey, 0.0)).z;
+  if (!(gapAtEdge > 0.0))
+    throw InputError(s.file, o.keyPath("curvature") + ".radius_mm", formatText("%g", s.curvature->radiusMm),
+                     formatText("a curvature that keeps the array off the panel (at the panel's edge the gap before "
+                                "the array would be %.4g mm)", gapAtEdge));
 }
 
 }  // namespace
@@ -209,6 +226,39 @@ double OpticalStack::layerBackZ(size_t i) const {
   return z;
 }
 
+CurvedFrame OpticalStack::arrayFrame() const {
+  CurvedFrame f;
+  if (!curvature) return f;
+  f.shape = curvature->shape == StackCurvature::Shape::Cylinder ? CurvedFrame::Shape::Cylinder : CurvedFrame::Shape::Sphere;
+  f.radiusMm = curvature->radiusMm;
+  // The first layer that is not an air gap; a stack cut short before it (the layers below a
+  // stop) keeps the reference at the top of its gaps, where that layer would begin.
+  size_t first = 0;
+  while (first < layers.size() && layers[first].kind == StackLayer::Kind::Gap) ++first;
+  f.zRefMm = layerBackZ(first);
+  return f;
+}
+
+CurvedFrame OpticalStack::panelFrame() const {
+  CurvedFrame f;
+  if (!panelRadiusMm || !curvature) return f;
+  f.shape = arrayFrame().shape;
+  f.radiusMm = *panelRadiusMm;
+  return f;
+}
+
+void axisFootOnPanel(const OpticalStack& s, double x, double y, double& px, double& py) {
+  const CurvedFrame array = s.arrayFrame(), panel = s.panelFrame();
+  px = x, py = y;
+  if (array.flat()) return;
+  const Point3d q = array.toWorld(x, y, array.zRefMm);
+  const Vec3d down = -array.up(q);
+  double t = q.z / -down.z;
+  if (!panel.flat() && !panel.hitShell(q, down, 0.0, 0.0, 1e12, t)) return;
+  const Vec3d foot = panel.toFrame(q + t * down);
+  px = foot.x, py = foot.y;
+}
+
 int OpticalStack::lensArrayCount() const {
   return int(std::count_if(layers.begin(), layers.end(), [](const StackLayer& l) { return l.kind == StackLayer::Kind::LensArray; }));
 }
@@ -232,7 +282,12 @@ OpticalStack parseOpticalStack(const JsonObject& o, double panelWidthMm, double 
     c.rejectUnknown();
     s.curvature = curv;
   }
-  if (o.has("panel_radius_mm")) s.panelRadiusMm = o.number("panel_radius_mm");
+  if (o.has("panel_radius_mm")) {
+    s.panelRadiusMm = o.number("panel_radius_mm");
+    if (!s.curvature)
+      o.fail("panel_radius_mm", formatText("%g", *s.panelRadiusMm), "a curved panel under a curved array (give \"curvature\")");
+  }
+  s.panelWidthMm = panelWidthMm, s.panelHeightMm = panelHeightMm;
   o.rejectUnknown();
   for (size_t i = 0; i < s.layers.size(); ++i) {
     if (s.layers[i].kind == StackLayer::Kind::LensArray) checkLensArray(s, i);
@@ -315,11 +370,15 @@ std::optional<StackAsMla> mlaFromStack(const OpticalStack& s, std::string& why) 
 
 std::string untracedPart(const OpticalStack& s, std::string& key) {
   key = "stack";
-  if (s.curvature || s.panelRadiusMm) return "a curved array or panel";
   for (size_t i = 0; i < s.layers.size(); ++i) {
     const StackLayer& l = s.layers[i];
     key = l.keyPath;
+    if (s.curved() && l.kind == StackLayer::Kind::Barriers && l.lattice == Mla::Lattice::Hex)
+      return "barrier walls on a hex lattice in a curved stack";
     if (l.kind != StackLayer::Kind::LensArray) continue;
+    if (s.curved() && l.aperture != Mla::Aperture::Circle && l.apertureMm < l.pitchMm * (1.0 - 1e-12) &&
+        !(l.back.isPlane() && l.front.isPlane()))
+      return "walls between the caps of a curved lens array (a clear aperture smaller than its cell)";
     const bool cellShape = (l.aperture == Mla::Aperture::Square) == (l.lattice == Mla::Lattice::Square);
     if (!cellShape && l.aperture != Mla::Aperture::Circle)
       return "a clear aperture of another shape than its cell (a square on a hex lattice or a hex on a square one)";

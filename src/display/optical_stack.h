@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/json_config.h"
+#include "display/curved_frame.h"
 #include "display/mla.h"
 
 namespace inim {
@@ -69,14 +70,28 @@ struct OpticalStack {
   std::vector<StackLayer> layers;   // from the panel outward
   std::optional<StackCurvature> curvature;  // lenslet centres on a cylinder (axis y) or sphere
   std::optional<double> panelRadiusMm;      // a curved panel (same shape as the array)
+  double panelWidthMm = 0.0, panelHeightMm = 0.0;  // the panel's active area (parseOpticalStack's)
 
   double totalThicknessMm() const;
   // z of layer i's back plane.
   double layerBackZ(size_t i) const;
   int lensArrayCount() const;
+  // The frame the layers are flat in (curved_frame.h): bent around the curvature's centre, the
+  // reference shell through the back plane of the first layer that is not an air gap; flat
+  // without curvature.
+  CurvedFrame arrayFrame() const;
+  // The panel's: a shell of panel_radius_mm through the panel's vertex (z = 0), of the array's
+  // shape; flat without panel_radius_mm.
+  CurvedFrame panelFrame() const;
+  bool curved() const { return curvature.has_value() || panelRadiusMm.has_value(); }
 };
 
 const char* layerKindName(StackLayer::Kind k);
+
+// Where the axis of the lenslet at lattice point (x, y) (a curved stack's: the line from the
+// centre of curvature through it) meets the panel, in the panel's coordinates (a flat panel's
+// x, y; a curved one's arc coordinates); a flat stack's axes meet it at (x, y).
+void axisFootOnPanel(const OpticalStack& s, double x, double y, double& px, double& py);
 
 // Reads "stack": {"layers": [...], "curvature": {...}, "panel_radius_mm": R} and validates it
 // against a panel of the given active size (mm): layers that overlap, surfaces undefined or

@@ -47,20 +47,28 @@ double firstLatticePitch(const OpticalStack& s) {
 // leaves the one through its front surface into air and enters the next through its back
 // surface, with no air between: two layers in contact are a cemented interface, paraxially the
 // same.
+//
+// A curved stack (curved_frame.h) is the axial lenslet's column: each surface bent onto its
+// shell adds the shell's curvature s / rho(z) to its own (a plane becomes the shell).
 template <class AtPlane>
 Matrix2 walkStack(const OpticalStack& s, double wavelengthNm, AtPlane&& atPlane) {
+  const CurvedFrame frame = s.arrayFrame();
+  auto shell = [&](double z) { return frame.flat() ? 0.0 : frame.sign() / frame.shellRadius(z); };
   Matrix2 m;
   double n = s.layers.empty() ? 1.0 : layerIndex(s, s.layers[0], wavelengthNm);
   for (size_t i = 0; i < s.layers.size(); ++i) {
     const StackLayer& l = s.layers[i];
-    const double nl = layerIndex(s, l, wavelengthNm);
-    if (i > 0) m = m.then(refraction(n, 1.0, frontCurvature(s.layers[i - 1]))).then(refraction(1.0, nl, backCurvature(l)));
-    atPlane(s.layerBackZ(i), m);
+    const double nl = layerIndex(s, l, wavelengthNm), z = s.layerBackZ(i);
+    if (i > 0)
+      m = m.then(refraction(n, 1.0, frontCurvature(s.layers[i - 1]) + shell(z)))
+              .then(refraction(1.0, nl, backCurvature(l) + shell(z)));
+    atPlane(z, m);
     m = m.then(transfer(l.thicknessMm, nl));
     atPlane(s.layerBackZ(i + 1), m);
     n = nl;
   }
-  if (!s.layers.empty()) m = m.then(refraction(n, 1.0, frontCurvature(s.layers.back())));
+  if (!s.layers.empty())
+    m = m.then(refraction(n, 1.0, frontCurvature(s.layers.back()) + shell(s.totalThicknessMm())));
   return m;
 }
 
@@ -148,9 +156,22 @@ std::string stackText(const OpticalStack& s, const StackFirstOrder& fo) {
     if (l.kind == StackLayer::Kind::Barriers) t += formatText("  pitch %g mm, walls %g mm wide", l.pitchMm, l.wallMm);
     t += "\n";
   }
-  if (s.curvature)
-    t += formatText("  curved: lenslet centres on a %s of radius %g mm\n",
-                    s.curvature->shape == StackCurvature::Shape::Sphere ? "sphere" : "cylinder", s.curvature->radiusMm);
+  if (s.curvature) {
+    const CurvedFrame array = s.arrayFrame();
+    t += formatText("  curved: lenslet centres on a %s of radius %g mm through z = %.4f mm; every lenslet's axis passes\n"
+                    "    through its centre of curvature at z = %.4g mm (%s); the first order below counts each surface's shell\n",
+                    s.curvature->shape == StackCurvature::Shape::Sphere ? "sphere" : "cylinder (axis along y)",
+                    s.curvature->radiusMm, array.zRefMm, array.centre().z,
+                    s.curvature->radiusMm > 0.0 ? "in front: the axes converge" : "behind the panel: the axes diverge");
+    if (s.panelWidthMm > 0.0) {
+      const bool sphere = s.curvature->shape == StackCurvature::Shape::Sphere;
+      const double ex = s.panelWidthMm / 2.0, ey = sphere ? s.panelHeightMm / 2.0 : 0.0;
+      const double edge = array.zRefMm - array.toFrame(s.panelFrame().toWorld(ex, ey, 0.0)).z;
+      t += formatText("    the %s panel's %s (%.4g mm off the axis) lies %.4f mm below the array (%.4f mm on the axis)\n",
+                      s.panelRadiusMm ? formatText("curved (R %g mm)", *s.panelRadiusMm).c_str() : "flat",
+                      sphere ? "corner" : "edge", std::hypot(ex, ey), edge, array.zRefMm);
+    }
+  }
   t += formatText("First order of one lenslet column at %.2f nm (docs/design.md):\n", fo.wavelengthNm);
   if (fo.afocal) return t + "  afocal (no power): no focal length, principal planes or reference plane\n";
   t += formatText("  effective focal length f = -1/C       %.5f mm\n", fo.focalLengthMm);

@@ -19,7 +19,9 @@ DisplayModel makeDisplayModel(const Display& d, const EiLayout& L, const Image& 
   if (!(m.gapMm > 0.0) || !std::isfinite(m.gapMm))
     throw InputError(d.file, "reconstruction_gap_mm", std::to_string(m.gapMm), "a gap > 0 mm");
   m.panel = std::make_unique<PanelEmitter>(d.panel, L, eia, eiaFile, m.gapMm, emitter);
-  if (mla == MlaKind::Ideal)
+  if (mla == MlaKind::Ideal && d.stack && d.stack->curved())
+    m.mla = std::make_unique<CurvedIdealMla>(d, L, lensletFocus(d.mla).focalLengthMm, m.gapMm);
+  else if (mla == MlaKind::Ideal)
     m.mla = std::make_unique<IdealLensletMla>(L, d.mla.pitchMm, lensletFocus(d.mla).focalLengthMm, m.gapMm);
   else if (d.stackTraced)
     m.mla = std::make_unique<StackMla>(d, L, m.gapMm);

@@ -55,15 +55,23 @@ struct PixelRay {
   bool real = false, crosstalk = false;
 };
 
-PixelRay pixelRay(const StackChiefRaySolver& solver, double gap, double px, double py, double cx, double cy) {
+PixelRay pixelRay(const StackChiefRaySolver& solver, double gap, double px, double py, double cx, double cy,
+                  bool pinholeOnly = false) {
   PixelRay r;
   Point3d p;
   Vec3d d;
-  if (solver.solve(px, py, cx, cy, p, d, &r.crosstalk) && d.z > 0.0) {
+  if (!pinholeOnly && solver.solve(px, py, cx, cy, p, d, &r.crosstalk) && d.z > 0.0) {
     r.d = d;
     r.o = p + ((gap - p.z) / d.z) * d;
     r.o.z = 0.0;
     r.real = true;
+    return r;
+  }
+  if (solver.curved()) {  // through the lenslet's principal point, from the panel as built
+    r.d = solver.pinholeDirection(px, py, cx, cy);
+    const Point3d q = solver.panelPoint(px, py);
+    r.o = q + ((gap - q.z) / r.d.z) * r.d;
+    r.o.z = 0.0;
     return r;
   }
   const Vec3d v(cx - px, cy - py, gap);
@@ -125,6 +133,33 @@ class ChiefRayTable {
   std::vector<Entry> e_;
 };
 
+// Damped Newton on the two launch slopes (tx, ty) until miss(tx, ty, mx, my) puts the stop
+// crossing within kMissTolMm of the lenslet's axis (false when a trace fails or the Jacobian is
+// singular); true when it ends within 100 kMissTolMm.
+template <class Miss>
+bool newtonOnSlopes(const Miss& miss, double& tx, double& ty) {
+  double mx, my;
+  if (!miss(tx, ty, mx, my)) return false;
+  for (int it = 0; it < 40 && std::hypot(mx, my) > kMissTolMm; ++it) {
+    const double h = 1e-7 * (1.0 + std::hypot(tx, ty));
+    double ax, ay, bx, by;
+    if (!miss(tx + h, ty, ax, ay) || !miss(tx, ty + h, bx, by)) return false;
+    const double j11 = (ax - mx) / h, j21 = (ay - my) / h, j12 = (bx - mx) / h, j22 = (by - my) / h;
+    const double det = j11 * j22 - j12 * j21;
+    if (!(std::fabs(det) > 0.0)) return false;
+    double sx = -(j22 * mx - j12 * my) / det, sy = -(-j21 * mx + j11 * my) / det;
+    // Damped: halve the step until the miss shrinks.
+    bool better = false;
+    for (int half = 0; half < 30 && !better; ++half, sx *= 0.5, sy *= 0.5) {
+      double nx, ny;
+      if (miss(tx + sx, ty + sy, nx, ny) && std::hypot(nx, ny) < std::hypot(mx, my))
+        tx += sx, ty += sy, mx = nx, my = ny, better = true;
+    }
+    if (!better) break;
+  }
+  return std::hypot(mx, my) <= kMissTolMm * 100.0;
+}
+
 }  // namespace
 
 StackChiefRaySolver::StackChiefRaySolver(const OpticalStack& s, double originX, double originY, double wavelengthNm)
@@ -140,6 +175,48 @@ StackChiefRaySolver::StackChiefRaySolver(const OpticalStack& s, double originX, 
   panelIndex_ = panelIndex(s, wavelengthNm);
   pitchMm_ = s.layers[stop_.layer].pitchMm;
   stopOffsetX_ = s.layers[stop_.layer].offsetXMm, stopOffsetY_ = s.layers[stop_.layer].offsetYMm;
+  array_ = s.arrayFrame(), panel_ = s.panelFrame();
+  principalZ_ = stackFirstOrder(s, wavelengthNm).frontPrincipalZMm;
+}
+
+Vec3d StackChiefRaySolver::pinholeDirection(double px, double py, double cx, double cy) const {
+  return glm::normalize(array_.toWorld(cx, cy, principalZ_) - panel_.toWorld(px, py, 0.0));
+}
+
+bool StackChiefRaySolver::curvedMiss(const Aim& a, double tx, double ty, double& mx, double& my) const {
+  Point3d q = a.p0;
+  Vec3d d = a.dir(tx, ty);
+  if (below_) {
+    StackExit ex;
+    if (!below_->trace(a.p0, d, wavelengthNm_, nullptr, ex) || !ex.towardViewer) return false;
+    q = ex.p, d = ex.d;
+  }
+  double t;
+  if (!array_.hitShell(q, d, stop_.zMm, -1e-3, 1e12, t)) return false;
+  const Vec3d f = array_.toFrame(q + t * d);
+  mx = array_.scaleX(stop_.zMm) * (f.x - a.cx), my = array_.scaleY(stop_.zMm) * (f.y - a.cy);
+  return std::isfinite(mx) && std::isfinite(my);
+}
+
+// As the flat solve, in the lenslet's own axes: the first-order slopes from the pixel's offset
+// across the axis, then Newton on the stop crossing's arc coordinates.
+bool StackChiefRaySolver::solveCurved(double px, double py, double cx, double cy, Point3d& exitP, Vec3d& exitD,
+                                      bool* crosstalk) const {
+  Aim a;
+  a.cx = cx + stopOffsetX_, a.cy = cy + stopOffsetY_;
+  a.p0 = panel_.toWorld(px, py, 0.0);
+  array_.axisFrame(a.cx, a.cy, a.axis, a.e1, a.e2);
+  const Vec3d off = a.p0 - array_.toWorld(a.cx, a.cy, array_.zRefMm);
+  double tx = -stop_.a * glm::dot(off, a.e1) / (stop_.b * panelIndex_);
+  double ty = -stop_.a * glm::dot(off, a.e2) / (stop_.b * panelIndex_);
+  auto miss = [&](double x, double y, double& mx, double& my) { return curvedMiss(a, x, y, mx, my); };
+  if (!newtonOnSlopes(miss, tx, ty)) return false;
+  StackExit ex;
+  if (!whole_->trace(a.p0, a.dir(tx, ty), wavelengthNm_, nullptr, ex) || !ex.towardViewer) return false;
+  exitP = ex.p, exitD = ex.d;
+  if (crosstalk)
+    *crosstalk = ex.crossedLens && (std::fabs(ex.lensXMm - a.cx) > pitchMm_ / 2.0 || std::fabs(ex.lensYMm - a.cy) > pitchMm_ / 2.0);
+  return true;
 }
 
 StackChiefRaySolver::~StackChiefRaySolver() = default;
@@ -162,29 +239,12 @@ bool StackChiefRaySolver::stopMiss(double px, double py, double tx, double ty, d
 
 bool StackChiefRaySolver::solve(double px, double py, double cx, double cy, Point3d& exitP, Vec3d& exitD,
                                 bool* crosstalk) const {
+  if (curved()) return solveCurved(px, py, cx, cy, exitP, exitD, crosstalk);
   cx += stopOffsetX_, cy += stopOffsetY_;
   // Paraxially the stop crossing is a (px - cx) + b n0 u0 from the axis: zero for u0 below.
   double tx = -stop_.a * (px - cx) / (stop_.b * panelIndex_), ty = -stop_.a * (py - cy) / (stop_.b * panelIndex_);
-  double mx, my;
-  if (!stopMiss(px, py, tx, ty, cx, cy, mx, my)) return false;
-  for (int it = 0; it < 40 && std::hypot(mx, my) > kMissTolMm; ++it) {
-    const double h = 1e-7 * (1.0 + std::hypot(tx, ty));
-    double ax, ay, bx, by;
-    if (!stopMiss(px, py, tx + h, ty, cx, cy, ax, ay) || !stopMiss(px, py, tx, ty + h, cx, cy, bx, by)) return false;
-    const double j11 = (ax - mx) / h, j21 = (ay - my) / h, j12 = (bx - mx) / h, j22 = (by - my) / h;
-    const double det = j11 * j22 - j12 * j21;
-    if (!(std::fabs(det) > 0.0)) return false;
-    double sx = -(j22 * mx - j12 * my) / det, sy = -(-j21 * mx + j11 * my) / det;
-    // Damped: halve the step until the miss shrinks.
-    bool better = false;
-    for (int half = 0; half < 30 && !better; ++half, sx *= 0.5, sy *= 0.5) {
-      double nx, ny;
-      if (stopMiss(px, py, tx + sx, ty + sy, cx, cy, nx, ny) && std::hypot(nx, ny) < std::hypot(mx, my))
-        tx += sx, ty += sy, mx = nx, my = ny, better = true;
-    }
-    if (!better) break;
-  }
-  if (!(std::hypot(mx, my) <= kMissTolMm * 100.0)) return false;
+  auto miss = [&](double x, double y, double& mx, double& my) { return stopMiss(px, py, x, y, cx, cy, mx, my); };
+  if (!newtonOnSlopes(miss, tx, ty)) return false;
   const double inv = 1.0 / std::sqrt(1.0 + tx * tx + ty * ty);
   StackExit ex;
   if (!whole_->trace(Point3d(px, py, 0.0), Vec3d(tx * inv, ty * inv, inv), wavelengthNm_, nullptr, ex) ||
@@ -203,7 +263,12 @@ RaySet generateTracedChiefRays(const EiLayout& L, const OpticalStack& stack, dou
   const StackChiefRaySolver solver(stack, L.lensXAt(0, 0), L.lensYAt(0, 0), o.wavelengthNm);
   const double g = panelDepthMm;
   std::unique_ptr<ChiefRayTable> table;
-  if (o.tableStepMm > 0.0 && uniformLattice(stack)) {
+  // Tables: one for every lenslet of a flat stack; one per lenslet column of a cylinder (its
+  // lenslets differ only across its axis: a column's rays are the same shifted along y). A
+  // sphere's lenslets all differ: every pixel is solved.
+  std::vector<std::unique_ptr<ChiefRayTable>> columnTables;
+  const bool cylinder = stack.curvature && stack.curvature->shape == StackCurvature::Shape::Cylinder;
+  if (o.tableStepMm > 0.0 && uniformLattice(stack) && (!stack.curved() || cylinder) && !o.pinholeOnly) {
     double maxDx = 0.0, maxDy = 0.0;
     for (int k = 0; k < L.eiCols; ++k)
       for (int l = 0; l < L.eiRows; ++l) {
@@ -211,9 +276,14 @@ RaySet generateTracedChiefRays(const EiLayout& L, const OpticalStack& stack, dou
         for (int i : {0, L.eiW - 1}) maxDx = std::max(maxDx, std::abs(L.pixelCentreX(c0 + i) - L.lensXAt(k, l)));
         for (int j : {0, L.eiH - 1}) maxDy = std::max(maxDy, std::abs(L.pixelCentreY(r0 + j) - L.lensYAt(k, l)));
       }
-    const int k0 = L.eiCols / 2, l0 = L.eiRows / 2;
-    table = std::make_unique<ChiefRayTable>(solver, g, L.lensXAt(k0, l0), L.lensYAt(k0, l0), maxDx + o.tableStepMm,
-                                            maxDy + o.tableStepMm, o.tableStepMm);
+    const double mx = maxDx + o.tableStepMm, my = maxDy + o.tableStepMm;
+    if (!stack.curved()) {
+      const int k0 = L.eiCols / 2, l0 = L.eiRows / 2;
+      table = std::make_unique<ChiefRayTable>(solver, g, L.lensXAt(k0, l0), L.lensYAt(k0, l0), mx, my, o.tableStepMm);
+    } else {
+      for (int k = 0; k < L.eiCols; ++k)
+        columnTables.push_back(std::make_unique<ChiefRayTable>(solver, g, L.lensX[size_t(k)], 0.0, mx, my, o.tableStepMm));
+    }
   }
   RaySet rays;
   for (auto* v : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz}) v->resize(size_t(L.numRays()));
@@ -231,14 +301,16 @@ RaySet generateTracedChiefRays(const EiLayout& L, const OpticalStack& stack, dou
           L.forEachRayOfEi(k, l, [&](int64_t ri, int col, int row, int, int) {
             const double px = L.pixelCentreX(col), py = L.pixelCentreY(row);
             PixelRay r;
-            if (table && table->lookup(px - cx, py - cy, r))
+            const ChiefRayTable* lensTable = columnTables.empty() ? table.get() : columnTables[size_t(k)].get();
+            if (lensTable && lensTable->lookup(px - cx, py - cy, r))
               r.o += Vec3d(cx, cy, 0.0);
             else
-              r = pixelRay(solver, g, px, py, cx, cy);
+              r = pixelRay(solver, g, px, py, cx, cy, o.pinholeOnly);
             rays.set(size_t(ri), Vec3(r.o), Vec3(r.d));
-            fallback += r.real ? 0 : 1;
+            fallback += r.real || o.pinholeOnly ? 0 : 1;
             crosstalk += r.crosstalk ? 1 : 0;
-            const Vec3d pinhole = glm::normalize(Vec3d(cx - px, cy - py, g));
+            const Vec3d pinhole = solver.curved() ? solver.pinholeDirection(px, py, cx, cy)
+                                                  : glm::normalize(Vec3d(cx - px, cy - py, g));
             const double dev = angleDeg(pinhole, r.d);
             maxDev = std::max(maxDev, dev), devSum += dev;
           });

@@ -33,6 +33,9 @@ class StackTracer;
 struct TracedChiefRayOptions {
   double wavelengthNm = kLambdaDNm;
   double tableStepMm = 0.02;  // 0: every pixel solved directly
+  // A curved stack's pinhole model: each pixel's ray through its lenslet's principal point, from
+  // the panel as built (`--chief-rays pinhole` on a curved display); no ray is traced.
+  bool pinholeOnly = false;
 };
 
 struct TracedChiefRayStats {
@@ -51,20 +54,37 @@ class StackChiefRaySolver {
   StackChiefRaySolver(const OpticalStack& stack, double originXMm, double originYMm, double wavelengthNm);
   ~StackChiefRaySolver();
 
-  // The chief ray from panel point (px, py, 0) through the stop of the lenslet whose axis is at
-  // (cx, cy): where it leaves the stack and which way; false when there is none.
+  // The chief ray from panel point (px, py) (a curved panel's arc coordinates) through the stop
+  // of the lenslet whose axis is at lattice point (cx, cy): where it leaves the stack and which
+  // way (the stack's frame, the panel's vertex at z = 0); false when there is none.
   bool solve(double px, double py, double cx, double cy, Point3d& exitP, Vec3d& exitD, bool* crosstalk = nullptr) const;
+  // The pinhole model's ray of a curved stack: from the panel point toward lenslet (cx, cy)'s
+  // principal point H (its axis at the stack's first-order H); flat stacks: toward (cx, cy, H).
+  Vec3d pinholeDirection(double px, double py, double cx, double cy) const;
+  Point3d panelPoint(double px, double py) const { return panel_.toWorld(px, py, 0.0); }
+  bool curved() const { return !array_.flat(); }
   const ApertureStop& stop() const { return stop_; }
   double pitchMm() const { return pitchMm_; }
 
  private:
   bool stopMiss(double px, double py, double tx, double ty, double cx, double cy, double& mx, double& my) const;
+  // Curved stacks: the launch direction is the lenslet's axis tilted by (tx, ty) along e1, e2.
+  struct Aim {
+    Point3d p0;
+    Vec3d axis, e1, e2;
+    double cx = 0, cy = 0;
+    Vec3d dir(double tx, double ty) const { return glm::normalize(axis + tx * e1 + ty * e2); }
+  };
+  bool curvedMiss(const Aim& a, double tx, double ty, double& mx, double& my) const;
+  bool solveCurved(double px, double py, double cx, double cy, Point3d& exitP, Vec3d& exitD, bool* crosstalk) const;
 
   ApertureStop stop_;
   std::unique_ptr<StackTracer> below_;  // the layers below the stop's plane (null: none)
   std::unique_ptr<StackTracer> whole_;
   double panelIndex_ = 1.0, wavelengthNm_ = kLambdaDNm, pitchMm_ = 1.0;
   double stopOffsetX_ = 0.0, stopOffsetY_ = 0.0;  // the stop layer's lattice offset
+  CurvedFrame array_, panel_;
+  double principalZ_ = 0.0;  // H, from the panel
 };
 
 // All rays of the layout in ray order, like generatePinholeRays, in the display frame: the panel

@@ -34,6 +34,7 @@ class StackMla final : public MlaModel {
   void lensletAt(double x, double y, int& k, int& l) const;
 
   std::unique_ptr<StackTracer> tracer_;
+  CurvedFrame panelFrame_;
   FresnelMode fresnel_;
   double gapMm_ = 0.0;
   float frontZ_ = 0.0f;
@@ -41,5 +42,30 @@ class StackMla final : public MlaModel {
   const EiLayout* layout_ = nullptr;
   double pitchMm_ = 1.0;
 };
+
+// The ideal display of a curved stack (the error budget's ideal rung): each lenslet an ideal
+// thin lens of the stack's focal length f at its principal point on the shell of the display
+// frame's z = 0 (the reconstruction gap), across its own axis, as IdealLensletMla is across z:
+// a ray from the viewer meets the shell in lenslet (k, l)'s cell, its slopes in the lenslet's
+// axes turn by its offset from the axis over f, and it goes on straight to the panel as built
+// (flat, or curved). No refraction, dispersion, crosstalk or Fresnel.
+class CurvedIdealMla final : public MlaModel {
+ public:
+  CurvedIdealMla(const Display& display, const EiLayout& layout, double focalLengthMm, double gapMm);
+  using MlaModel::traceToPanel;
+  bool traceToPanel(const Ray& ray, float lambdaNm, FresnelMode mode, Rng* rng, PanelArrival& out) const override;
+  bool isDispersive() const override { return false; }
+  float frontZ() const override { return frontZ_; }
+
+ private:
+  CurvedFrame array_, panel_;
+  const EiLayout* layout_ = nullptr;
+  double f_ = 0.0, gapMm_ = 0.0, pitchMm_ = 1.0;
+  float frontZ_ = 0.0f;
+};
+
+// Where a ray leaving a stack back through its panel lands, in the panel's coordinates (a curved
+// panel's arc coordinates and its own axes), the panel at the display frame's z = -gap.
+void panelArrivalAt(const CurvedFrame& panel, const Point3d& p, const Vec3d& d, double gapMm, PanelArrival& out);
 
 }  // namespace inim

@@ -116,6 +116,11 @@ double refineRoot(const F& f, double a, double fa, double c, double fc) {
 
 struct StackTracer::Boundary {
   double z = 0.0;                 // the plane (a surface's vertex plane)
+  // Curved stacks: the frame the boundary is flat in (curved_frame.h; null: the world's, z the
+  // world's z), the physical length per unit of its X and Y, and the Lipschitz factor of its
+  // height field along a unit ray (the map's largest stretch over the slab).
+  const CurvedFrame* frame = nullptr;
+  double scaleX = 1.0, scaleY = 1.0, stretch = 1.0;
   std::optional<StackSurface> surface;  // none: the plane itself
   Lattice lattice;
   double rClamp = 0.0;            // the clear aperture's radius: flat land beyond it
@@ -141,15 +146,18 @@ struct StackTracer::Region {
   double holeMm = 0.0;
   double openHalf = 0.0;          // walls: half the open width of a cell
   double reflectance = 0.0;       // walls
+  const CurvedFrame* frame = nullptr;  // sheets of a curved stack: their frame and scale
+  double scaleX = 1.0, scaleY = 1.0;
 };
 
 StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double originX, double originY)
-    : fresnel_(fresnel) {
+    : fresnel_(fresnel), array_(std::make_unique<CurvedFrame>(s.arrayFrame())), panel_(std::make_unique<CurvedFrame>(s.panelFrame())) {
   std::string key;
   if (const std::string part = untracedPart(s, key); !part.empty())
     throw InputError(s.file, key, part, "a stack the ray tracer models (docs/formats.md §3.6a)");
   const MaterialCatalog& catalog = MaterialCatalog::standard();
   Boundary panel;  // z = 0: the panel emits into the first layer
+  if (!panel_->flat()) panel.frame = panel_.get();
   boundaries_.push_back(panel);
   for (size_t i = 0; i < s.layers.size(); ++i) {
     const StackLayer& l = s.layers[i];
@@ -201,8 +209,14 @@ StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double orig
     if (l.kind == StackLayer::Kind::Barriers)
       r.kind = Region::Kind::Walls, r.lattice = latticeOf(l, originX, originY),
       r.openHalf = (l.pitchMm - l.wallMm) / 2.0, r.reflectance = l.reflectance;
+    if (!array_->flat())
+      r.frame = array_.get(), r.scaleX = array_->scaleX(0.5 * (z0 + z1)), r.scaleY = array_->scaleY(0.5 * (z0 + z1));
     boundaries_.back().z = z1;
     regions_.push_back(r);
+  }
+  for (size_t i = 1; i < boundaries_.size() && !array_->flat(); ++i) {
+    Boundary& b = boundaries_[i];
+    b.frame = array_.get(), b.scaleX = array_->scaleX(b.z), b.scaleY = array_->scaleY(b.z);
   }
   for (Boundary& b : boundaries_) {
     b.zMin = b.zMax = b.z;
@@ -216,7 +230,33 @@ StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double orig
   }
   top_ = boundaries_.back().z;
   front_ = std::max(top_, boundaries_.back().zMax);
+  if (!array_->flat()) setCurvedExtent(s);
   outside_ = std::make_unique<Region>();
+}
+
+void StackTracer::setCurvedExtent(const OpticalStack& s) {
+  const CurvedFrame& array = *array_;
+  // The map's stretch: the lateral coordinates change at most 1 / (rho cos^2 theta) per mm along a
+  // ray (theta the sphere's largest angle off the axis), against 1 / rho_b on the boundary's shell.
+  const double R = std::fabs(array.radiusMm), margin = 2.0 * boundaries_.back().lattice.pitch;
+  const double halfW = s.panelWidthMm / 2.0 + margin, halfH = s.panelHeightMm / 2.0 + margin;
+  // The array ends two pitches beyond the panel (arc lengths on the reference shell; a stack
+  // given without its panel's size: a quarter turn).
+  extentX_ = s.panelWidthMm > 0.0 ? halfW : 0.5 * M_PI * R;
+  extentY_ = s.panelHeightMm > 0.0 ? halfH : 0.5 * M_PI * R;
+  double cos2 = 1.0;
+  if (array.shape == CurvedFrame::Shape::Sphere) cos2 = std::max(std::pow(std::cos(std::hypot(halfW, halfH) / R), 2.0), 0.1);
+  for (size_t i = 1; i < boundaries_.size(); ++i) {
+    Boundary& b = boundaries_[i];
+    const double rhoMin = std::min(array.shellRadius(b.zMin), array.shellRadius(b.zMax));
+    b.stretch = array.shellRadius(b.z) / (rhoMin * cos2) * (1.0 + 1e-6);
+  }
+  // The highest world point: the front slab's top shell at the array's centre or its edges.
+  const double w = boundaries_.back().zMax;
+  top_ = front_ = -kNone;
+  for (double x : {0.0, halfW})
+    for (double y : {0.0, halfH}) front_ = std::max(front_, array.toWorld(x, y, w).z);
+  top_ = front_ += 1e-9;
 }
 
 StackTracer::~StackTracer() = default;
@@ -226,9 +266,31 @@ double StackTracer::boundaryZ(const Boundary& b, double x, double y) const {
   if (!b.surface) return b.z;
   double cx, cy;
   b.lattice.centre(x, y, cx, cy);
-  if (b.walled && !insideShape(b.apertureShape, b.apertureMm, x - cx, y - cy)) return b.z + b.surface->sag(b.rClamp).value_or(0.0);
-  const double r = std::min(std::hypot(x - cx, y - cy), b.rClamp);
+  const double dx = b.scaleX * (x - cx), dy = b.scaleY * (y - cy);
+  if (b.walled && !insideShape(b.apertureShape, b.apertureMm, dx, dy)) return b.z + b.surface->sag(b.rClamp).value_or(0.0);
+  const double r = std::min(std::hypot(dx, dy), b.rClamp);
   return b.z + b.surface->sag(r).value_or(0.0);
+}
+
+double StackTracer::heightAbove(const Boundary& b, const Point3d& p) const {
+  if (!b.frame) return p.z - boundaryZ(b, p.x, p.y);
+  const Vec3d q = b.frame->toFrame(p);
+  return q.z - boundaryZ(b, q.x, q.y);
+}
+
+Vec3d StackTracer::boundaryNormalAt(const Boundary& b, const Point3d& p) const {
+  if (!b.frame) return boundaryNormal(b, p.x, p.y);
+  const Vec3d up = b.frame->up(p);
+  if (!b.surface) return up;
+  // The gradient of the height above the surface, W - sag(r), r the scaled distance from the
+  // cell's centre in (X, Y): grad W - sag'(r) / r (sx^2 dX grad X + sy^2 dY grad Y).
+  const Vec3d q = b.frame->toFrame(p);
+  double cx, cy;
+  b.lattice.centre(q.x, q.y, cx, cy);
+  const double dx = b.scaleX * (q.x - cx), dy = b.scaleY * (q.y - cy), r = std::hypot(dx, dy);
+  if (r >= b.rClamp || r == 0.0) return up;
+  const double k = sagSlope(*b.surface, r) / r;
+  return glm::normalize(up - k * (b.scaleX * dx * b.frame->gradX(p) + b.scaleY * dy * b.frame->gradY(p)));
 }
 
 Vec3d StackTracer::boundaryNormal(const Boundary& b, double x, double y) const {
@@ -245,6 +307,7 @@ Vec3d StackTracer::boundaryNormal(const Boundary& b, double x, double y) const {
 bool StackTracer::hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t,
                               Vec3d* wallNormal) const {
   if (wallNormal) *wallNormal = Vec3d(0.0);
+  if (b.frame) return hitCurvedBoundary(b, o, d, tMax, t);
   // The part of the ray inside the slab [zMin, zMax].
   double t0 = kEps, t1 = tMax;
   if (d.z != 0.0) {
@@ -301,6 +364,33 @@ bool StackTracer::hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& 
   return march(a, t1);
 }
 
+bool StackTracer::hitCurvedBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t) const {
+  const CurvedFrame& fr = *b.frame;
+  // W is |R| - rho: good to a few ulps of the radius, which a new ray must start beyond.
+  const double R = std::fabs(fr.radiusMm), eps = kEps + 64.0 * (std::nextafter(R, kNone) - R);
+  if (!b.surface) return fr.hitShell(o, d, b.z, eps, tMax, t, extentX_, extentY_);
+  double lo[2], hi[2];
+  const int parts = fr.band(o, d, b.zMin - eps, b.zMax + eps, eps, tMax, lo, hi);
+  auto f = [&](double s) { return heightAbove(b, o + s * d); };
+  // As the flat march, with the map's stretch in the Lipschitz bound and steps not scaled by the
+  // ray's slope (it turns against the local axis along the way).
+  const double lipschitz = 1.0 + b.maxSlope * b.stretch;
+  const double minStep = std::min(b.lattice.pitch * b.scaleX / 128.0, std::max(b.zMax - b.zMin, 1e-12) / 16.0);
+  for (int i = 0; i < parts; ++i) {
+    double a = lo[i], fa = f(a);
+    while (a < hi[i]) {
+      const double m = std::min(a + std::max(minStep, std::fabs(fa) / lipschitz), hi[i]), fm = f(m);
+      if ((fa <= 0.0) != (fm <= 0.0)) {
+        t = refineRoot(f, a, fa, m, fm);
+        const Vec3d q = fr.toFrame(o + t * d);
+        if (std::fabs(q.x) <= extentX_ && std::fabs(q.y) <= extentY_) return true;
+      }
+      a = m, fa = fm;
+    }
+  }
+  return false;
+}
+
 std::vector<StackTracer::WallCrossing> StackTracer::wallCrossings(const Boundary& b, const Point3d& o, const Vec3d& d,
                                                                   double t0, double t1) const {
   // The lines of every aperture edge: for each side normal e of the cell shape, the cells'
@@ -331,6 +421,7 @@ std::vector<StackTracer::WallCrossing> StackTracer::wallCrossings(const Boundary
 }
 
 bool StackTracer::hitWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double& t, Vec3d& n) const {
+  if (r.frame) return hitCurvedWall(r, o, d, tMax, t, n);
   double cx, cy;
   r.lattice.centre(o.x, o.y, cx, cy);
   std::array<Vec3d, 6> sides;
@@ -345,12 +436,43 @@ bool StackTracer::hitWall(const Region& r, const Point3d& o, const Vec3d& d, dou
   return t <= tMax;
 }
 
-bool StackTracer::passesSheet(const Region& r, const Point3d& a, const Point3d& b) const {
+// A curved square lattice's cell borders are planes through the centre of curvature: X = |R| a
+// is the plane v.x cos a + s v.z sin a = 0 (v = p - C), a sphere's Y likewise in y, a cylinder's Y
+// the plane y = Y. The walls' faces lie openHalf (arc length) either side of the cell's centre.
+bool StackTracer::hitCurvedWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double& t,
+                                Vec3d& n) const {
+  const CurvedFrame& fr = *r.frame;
+  const Vec3d q = fr.toFrame(o), v = o - fr.centre();
+  double cx, cy;
+  r.lattice.centre(q.x, q.y, cx, cy);
+  const double R = std::fabs(fr.radiusMm), s = fr.sign();
+  t = kNone;
+  auto face = [&](const Vec3d& normal, double offset, double inward) {  // inside: inward (N.v + offset) > 0
+    const double g = inward * (glm::dot(normal, v) + offset), along = -inward * glm::dot(normal, d);
+    if (along <= 0.0) return;
+    const double at = g / along;
+    if (at < t) t = std::max(at, 0.0), n = inward * normal;
+  };
+  for (double side : {-1.0, 1.0}) {
+    const double a = (cx + side * r.openHalf) / R;
+    face(Vec3d(std::cos(a), 0.0, s * std::sin(a)), 0.0, -side);
+    if (fr.shape == CurvedFrame::Shape::Sphere) {
+      const double b = (cy + side * r.openHalf) / R;
+      face(Vec3d(0.0, std::cos(b), s * std::sin(b)), 0.0, -side);
+    } else {
+      face(Vec3d(0.0, 1.0, 0.0), -(cy + side * r.openHalf), -side);
+    }
+  }
+  return t <= tMax;
+}
+
+bool StackTracer::passesSheet(const Region& r, const Point3d& a0, const Point3d& b0) const {
+  const Vec3d a = r.frame ? r.frame->toFrame(a0) : Vec3d(a0), b = r.frame ? r.frame->toFrame(b0) : Vec3d(b0);
   double ax, ay, bx, by;
   r.lattice.centre(a.x, a.y, ax, ay);
   r.lattice.centre(b.x, b.y, bx, by);
-  return ax == bx && ay == by && insideShape(r.hole, r.holeMm, a.x - ax, a.y - ay) &&
-         insideShape(r.hole, r.holeMm, b.x - bx, b.y - by);
+  return ax == bx && ay == by && insideShape(r.hole, r.holeMm, r.scaleX * (a.x - ax), r.scaleY * (a.y - ay)) &&
+         insideShape(r.hole, r.holeMm, r.scaleX * (b.x - bx), r.scaleY * (b.y - by));
 }
 
 // n(lambda) by linear interpolation in the 1 nm table, as real_mla.h does.
@@ -367,7 +489,12 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Fre
   Point3d p = o0;
   Vec3d d = d0;
   int region;
-  if (p.z <= 0.0 && d.z > 0.0) {  // from the panel: it emits into the first layer
+  if (!panel_->flat()) {
+    // A curved panel: the ray starts on it (within 1e-6 mm), heading out of it.
+    if (std::fabs(panel_->toFrame(p).z) <= 1e-6 && glm::dot(d, panel_->up(p)) > 0.0) region = 0;
+    else if (p.z >= top_ && d.z < 0.0) region = int(regions_.size());
+    else return false;
+  } else if (p.z <= 0.0 && d.z > 0.0) {  // from the panel: it emits into the first layer
     p += d * (-p.z / d.z);
     region = 0;
   } else if (p.z >= top_ && d.z < 0.0) {
@@ -388,6 +515,12 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Fre
     if (outside && !(tLow < kNone)) return false;  // leaving in front without meeting the stack
     if (r.kind == Region::Kind::Walls && hitWall(r, p, d, std::min(tLow, tUp), t, wallN)) tWall = t;
     const double tHit = std::min({tLow, tUp, tWall});
+    if (!(tHit < kNone) && !array_->flat()) {
+      // Around a curved stack's edge (its shells unbounded, the panel's plane below them, the
+      // frame's half-space ending at the centre): the ray leaves the display there.
+      out.p = p, out.d = d, out.towardViewer = false, out.aroundEdge = true;
+      return true;
+    }
     if (!(tHit < kNone)) return false;
     p += d * tHit;
     out.events = events + 1;
@@ -406,9 +539,10 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Fre
     const Boundary& b = boundaries_[bi];
     if (r.kind == Region::Kind::Sheet && !passesSheet(r, entry, p)) return false;
     if (b.masked) {
+      const Vec3d q = b.frame ? b.frame->toFrame(p) : Vec3d(p);
       double cx, cy;
-      b.maskLattice.centre(p.x, p.y, cx, cy);
-      if (!insideShape(b.hole, b.holeMm, p.x - cx, p.y - cy)) return false;
+      b.maskLattice.centre(q.x, q.y, cx, cy);
+      if (!insideShape(b.hole, b.holeMm, b.scaleX * (q.x - cx), b.scaleY * (q.y - cy))) return false;
     }
     const int next = goingUp ? region + 1 : region - 1;
     if (next < 0) {  // back through the panel plane
@@ -417,7 +551,7 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Fre
     }
     const double n1 = index(r, lambdaNm), n2 = next < int(regions_.size()) ? index(regions_[size_t(next)], lambdaNm) : 1.0;
     const Vec3d& capWall = goingUp ? upCap : lowCap;
-    Vec3d n = capWall != Vec3d(0.0) ? capWall : boundaryNormal(b, p.x, p.y);
+    Vec3d n = capWall != Vec3d(0.0) ? capWall : boundaryNormalAt(b, p);
     if (glm::dot(n, d) > 0.0) n = -n;  // facing the incoming ray
     const double cosi = -glm::dot(n, d), eta = n1 / n2, sin2t = eta * eta * (1.0 - cosi * cosi);
     const double refl = sin2t >= 1.0 ? 1.0 : fresnelReflectance(cosi, n1, n2);
@@ -429,7 +563,10 @@ bool StackTracer::trace(const Point3d& o0, const Vec3d& d0, double lambdaNm, Fre
       continue;
     }
     d = glm::normalize(eta * d + (eta * cosi - std::sqrt(1.0 - sin2t)) * n);
-    if (b.surface) out.crossedLens = true, out.lensXMm = p.x, out.lensYMm = p.y;
+    if (b.surface) {
+      const Vec3d q = b.frame ? b.frame->toFrame(p) : Vec3d(p);
+      out.crossedLens = true, out.lensXMm = q.x, out.lensYMm = q.y;
+    }
     region = next;
     entry = p;
     // Out in front, unless the ray meets the front surface again (a neighbouring cap that rises

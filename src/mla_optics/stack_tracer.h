@@ -26,8 +26,21 @@
 // vertical walls between the cap's edge and the land, refracting like any face. The march
 // splits at every line an aperture edge lies on; a change of sign across one is a wall hit.
 //
-// Not modelled yet (the constructor refuses with an InputError naming the layer): curved
-// stacks, and clear apertures of another shape than the cell's (a square on a hex lattice).
+// Curved stacks (display/curved_frame.h): every boundary is the same height field over its shell
+// in the stack's frame (X, Y, W), and the panel a plane or a shell of its own. A ray meets a
+// shell by the line-sphere (cylinder) equation, a lens surface by the same march over the parts
+// of the ray inside its slab of shells, the Lipschitz bound widened by the map's stretch; normals
+// are the height's gradient. Lens crossings are reported in the frame's
+// arc coordinates. The curved array ends two pitches beyond its panel's edge (its shells are
+// spheres or cylinders that would otherwise close around their centre); a ray that finds no
+// surface there leaves the stack around its edge (StackExit::aroundEdge).
+//
+// A curved stack's barrier walls (square lattices) are the planes through the centre of
+// curvature along its cells' borders.
+//
+// Not modelled yet (the constructor refuses with an InputError naming the layer): clear
+// apertures of another shape than the cell's (a square on a hex lattice), and in a curved stack
+// walls between caps and barrier walls on a hex lattice.
 #include <memory>
 #include <vector>
 
@@ -45,7 +58,9 @@ struct StackExit {
   int events = 0;            // surface interactions
   bool trapped = false;      // still inside after the most events allowed (guided by TIR)
   bool towardViewer = true;  // left through the front (else back through the panel plane)
-  // Where the ray last refracted at a lens surface (the lenslet that formed the image).
+  bool aroundEdge = false;   // a curved stack's: left around its edge, guided there by TIR
+  // Where the ray last refracted at a lens surface (the lenslet that formed the image), in the
+  // stack's frame (a curved stack's arc coordinates: its lattice's).
   bool crossedLens = false;
   double lensXMm = 0.0, lensYMm = 0.0;
 };
@@ -75,8 +90,13 @@ class StackTracer {
  private:
   struct Boundary;
   struct Region;
-  double boundaryZ(const Boundary& b, double x, double y) const;
-  Vec3d boundaryNormal(const Boundary& b, double x, double y) const;  // unit, +z side up
+  double boundaryZ(const Boundary& b, double x, double y) const;     // x, y in b's frame
+  Vec3d boundaryNormal(const Boundary& b, double x, double y) const;  // unit, +z side up (flat)
+  // World point p's height above boundary b along its frame's W; the unit normal there, up.
+  double heightAbove(const Boundary& b, const Point3d& p) const;
+  Vec3d boundaryNormalAt(const Boundary& b, const Point3d& p) const;
+  bool hitCurvedBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t) const;
+  void setCurvedExtent(const OpticalStack& s);
   // Where the ray meets boundary b within tMax; on a wall between a lens array's caps, its
   // horizontal normal in *wallNormal (else zero).
   bool hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t,
@@ -88,6 +108,7 @@ class StackTracer {
   std::vector<WallCrossing> wallCrossings(const Boundary& b, const Point3d& o, const Vec3d& d, double t0,
                                           double t1) const;
   bool hitWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double& t, Vec3d& n) const;
+  bool hitCurvedWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double& t, Vec3d& n) const;
   bool passesSheet(const Region& r, const Point3d& a, const Point3d& b) const;
   double index(const Region& r, double lambdaNm) const;
 
@@ -95,7 +116,10 @@ class StackTracer {
   std::vector<Region> regions_;
   std::unique_ptr<Region> outside_;   // air in front of the stack
   FresnelMode fresnel_;
+  // The stack's frames (flat when it is not curved), on the heap: boundaries point at them.
+  std::unique_ptr<const CurvedFrame> array_, panel_;
   double top_ = 0.0, front_ = 0.0;
+  double extentX_ = 1e300, extentY_ = 1e300;  // a curved array's half extent (arc lengths)
   int maxEvents_ = 64;
 };
 

@@ -48,14 +48,18 @@ DisplayRays displayRaysFor(const Display& d, const EiLayout& L, const DisplayRay
     r.rays = generateRealLensRays(L, *mla, *c.realLens, &st, &pb);
     pb.finish();
     r.summary = summaryText(*c.realLens, st);
-  } else if (tracesChiefRays(d, c)) {
-    ProgressBar pb("chief rays", uint64_t(L.numRays()), bar);
+  } else if (tracesChiefRays(d, c) || (d.stack && d.stack->curved())) {
+    // A curved stack's pinhole rays too: its lenslets' principal points are not on one plane.
+    TracedChiefRayOptions o = c.traced;
+    o.pinholeOnly = !tracesChiefRays(d, c);
+    ProgressBar pb(o.pinholeOnly ? "pinhole rays" : "chief rays", uint64_t(L.numRays()), bar);
     TracedChiefRayStats st;
     // The stack as built: the generation gap is the pinhole model's.
-    r.rays = generateTracedChiefRays(L, displayStackAtGap(d, d.reconstructionGapMm), d.reconstructionGapMm, c.traced,
-                                     &st, &pb);
+    r.rays = generateTracedChiefRays(L, displayStackAtGap(d, d.reconstructionGapMm), d.reconstructionGapMm, o, &st, &pb);
     pb.finish();
-    r.summary = summaryText(c.traced, st);
+    r.summary = o.pinholeOnly ? formatText("pinhole rays through the principal points of a curved array: %llu rays",
+                                           (unsigned long long)st.rays)
+                              : summaryText(o, st);
   }
   return r;
 }

@@ -413,3 +413,49 @@ TEST(CliEia, APinholeArrayDisplaysTracedEiaIsThePinholeModels) {
   expectBadInput("eia --display " + smallDisplay() + scene + " --wavelength-nm 500 --out " + out,
                  {"--wavelength-nm", "500"}, {out});
 }
+
+// A curved display (the small display's MLA bent into a 300 mm cylinder, centre in front) runs
+// from its EIA to a view: traced chief rays by default, the pinhole model's rays through each
+// lenslet's principal point with --chief-rays pinhole (different EIAs: the two models differ).
+// Refused before any output: a toed-in layout (the curvature aims the lenslets), a curvature that
+// brings the array onto the panel at its edge, barrier walls on a hex lattice in a curved stack.
+TEST(CliEia, ACurvedDisplayRunsFromEiaToViewAndRefusesWhatItCannot) {
+  auto curved = [&](const std::string& name, const std::string& curvature, const std::string& extraLayer = "") {
+    Json j = Json::parse(smallDisplayJson(11, 9, 9));
+    j.erase("mla");
+    j.erase("reconstruction_gap_mm");
+    j["stack"] = Json::parse(R"({"layers": [{"type": "gap", "thickness_mm": 3.0},
+        {"type": "lens_array", "pitch_mm": 0.9, "material": "PMMA", "thickness_mm": 1.0,
+         "front": {"radius_mm": -1.5}})" + extraLayer + R"(], "curvature": )" + curvature + "}");
+    const std::string file = path(name);
+    writeText(file, j.dump(2));
+    return file;
+  };
+  const std::string display = curved("curved.json", R"({"shape": "cylinder", "radius_mm": 300})");
+  const std::string traced = path("curved_traced.exr"), pinhole = path("curved_pinhole.exr");
+  Result r = run("eia --display " + display + " --out " + traced);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("chief rays traced through the stack"), std::string::npos) << r.output;
+  r = run("eia --display " + display + " --chief-rays pinhole --out " + pinhole);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("principal points of a curved array"), std::string::npos) << r.output;
+  EXPECT_NE(readImage(traced).data, readImage(pinhole).data);
+  const std::string view = path("curved_view.exr");
+  r = run("view --display " + display + " --eia " + traced + " --width 96 --out " + view);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Image v = readImage(view);
+  float peak = 0.0f;
+  for (float x : v.data) peak = std::max(peak, x);
+  EXPECT_GT(peak, 0.0f);  // the display shows
+
+  const std::string out = path("curved_bad.exr");
+  expectBadInput("eia --display " + display + " --layout toed-in --viewing-distance-mm 500 --out " + out,
+                 {"layout", "toed-in"}, {out});
+  expectBadInput("eia --display " + curved("tight.json", R"({"shape": "cylinder", "radius_mm": -6})") + " --out " + out,
+                 {"stack.curvature.radius_mm", "-6"}, {out});
+  expectBadInput("eia --display " +
+                     curved("walls.json", R"({"shape": "sphere", "radius_mm": 300})",
+                            R"(, {"type": "barriers", "pitch_mm": 0.9, "height_mm": 0.5, "lattice": "hex"})") +
+                     " --out " + out,
+                 {"stack.layers[2]", "curved"}, {out});
+}

@@ -153,6 +153,20 @@ TEST(OpticalStack, ABadStackIsRefusedNamingItsKeyPath) {
   EXPECT_EQ(refusedKey(gap + "{" + lens + R"(, "front": {"radius_mm": -1.62}})",
                        R"(, "curvature": {"shape": "cylinder", "radius_mm": 60})"),
             "");
+  // A curved array that would touch a flat panel at its edge (centre behind, |R| 55 mm: the
+  // array's edge dips 34 mm), one whose centre lies inside the stack, a curved panel under a
+  // flat array, a curved panel too tight for the panel.
+  EXPECT_EQ(refusedKey(gap + "{" + lens + R"(, "front": {"radius_mm": -1.62}})",
+                       R"(, "curvature": {"shape": "cylinder", "radius_mm": -55})"),
+            "stack.curvature.radius_mm");
+  EXPECT_EQ(refusedKey(gap + "{" + lens + R"(, "front": {"radius_mm": -1.62}})", R"(, "panel_radius_mm": 500)"),
+            "stack.panel_radius_mm");
+  EXPECT_EQ(refusedKey(gap + "{" + lens + R"(, "front": {"radius_mm": -1.62}})",
+                       R"(, "curvature": {"shape": "cylinder", "radius_mm": 500}, "panel_radius_mm": 20)"),
+            "stack.panel_radius_mm");
+  EXPECT_EQ(refusedKey(gap + "{" + lens + R"(, "front": {"radius_mm": -1.62}})",
+                       R"(, "curvature": {"shape": "cylinder", "radius_mm": -500}, "panel_radius_mm": -497)"),
+            "");  // concentric
   // A lattice that does not cover the 100 x 60 mm panel.
   EXPECT_EQ(refusedKey(gap + "{" + lens + R"(, "count": [90, 60], "front": {"radius_mm": -1.62}})"),
             "stack.layers[1].count");
@@ -214,10 +228,10 @@ TEST(OpticalStack, ADisplayFileWithOneLensArrayIsTodaysMla) {
 }
 
 // A flat compound stack loads for every stage: the equivalent MLA has the stack's focal length
-// and the gap runs to its principal plane H. Curved, it is analysed by `display info`
-// (Describe) and refused by every other stage (Trace) until the tracer models it. "mla" beside
-// "stack" is an error either way.
-TEST(OpticalStack, ACompoundStackIsTracedACurvedOneOnlyDescribed) {
+// and the gap runs to its principal plane H; curved, it is traced too. With barrier walls on a hex
+// lattice, which the tracer does not model in a curved stack, it is analysed by `display info` (Describe) and
+// refused by every other stage (Trace). "mla" beside "stack" is an error either way.
+TEST(OpticalStack, ACompoundStackIsTracedACurvedOneWithWallsOnlyDescribed) {
   Json stack = Json::parse(R"({"layers": [{"type": "gap", "thickness_mm": 3},
       {"type": "lens_array", "pitch_mm": 1.0, "material": "PMMA", "thickness_mm": 1.5, "front": {"radius_mm": -1.62}},
       {"type": "gap", "thickness_mm": 1},
@@ -230,9 +244,12 @@ TEST(OpticalStack, ACompoundStackIsTracedACurvedOneOnlyDescribed) {
   EXPECT_NEAR(flat.reconstructionGapMm, fo.reducedGapMm, 1e-12);
   EXPECT_EQ(flat.mla.pitchMm, 1.0);
 
-  stack["curvature"] = {{"shape", "sphere"}, {"radius_mm", 400}};
-  const std::string file = prototypeWithStack("curved.json", stack);
-  EXPECT_EQ(fixtures::expectInputError([&] { loadDisplay(file); }).key(), "stack");
+  stack["curvature"] = {{"shape", "sphere"}, {"radius_mm", 4000}};
+  for (int i : {1, 3}) stack["layers"][i]["pitch_mm"] = 0.9875;  // curved, the EIs lie under their lenslets
+  EXPECT_TRUE(loadDisplay(prototypeWithStack("curved.json", stack)).stackTraced);
+  stack["layers"].push_back({{"type", "barriers"}, {"pitch_mm", 1.0}, {"height_mm", 1.0}, {"lattice", "hex"}});
+  const std::string file = prototypeWithStack("curved-walls.json", stack);
+  EXPECT_EQ(fixtures::expectInputError([&] { loadDisplay(file); }).key(), "stack.layers[4]");
   const Display d = loadDisplay(file, DisplayUse::Describe);
   EXPECT_TRUE(d.stackOnly);
   const std::string text = displayInfoText(d);

@@ -205,7 +205,17 @@ TEST(StackTracer, RefusesWhatItDoesNotModelYet) {
   s.layers[1].aperture = Mla::Aperture::Square;
   s.layers[1].apertureMm = 1.0;
   s.curvature = StackCurvature{StackCurvature::Shape::Sphere, 300.0};
-  EXPECT_THROW(StackTracer{s}, InputError);
+  EXPECT_NO_THROW(StackTracer{s});  // curved: traced
+  StackLayer walls = layer(StackLayer::Kind::Barriers, 1.0);
+  walls.keyPath = "stack.layers[2]";
+  walls.lattice = Mla::Lattice::Hex;  // walls on a hex lattice, curved
+  s.layers.push_back(walls);
+  try {
+    StackTracer t(s);
+    FAIL() << "barrier walls on a curved hex lattice accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "stack.layers[2]");
+  }
 }
 
 // The view simulation's StackMla on today's MLA written as a stack: every camera ray reaches
