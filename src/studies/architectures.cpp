@@ -38,6 +38,7 @@ const std::vector<Design>& designs() {
       {"compound-symmetric", "compound array", "two plano-convex MLAs, caps facing, stop grid"},
       {"pinhole-array", "pinhole array", "opaque sheet with holes, no lens"},
       {"barrier-mla", "barrier MLA", "the prototype's MLA with absorbing walls"},
+      {"curved-mla-flat-panel", "curved MLA", "the prototype's MLA bent into a 2 m cylinder over the flat panel"},
   };
   return list;
 }
@@ -191,7 +192,10 @@ std::string discussionText(const std::vector<DesignRun>& runs) {
              "its cell) shows it as error: the budget's + apertures and + barriers steps are mostly that light. The "
              "barrier walls stand in the lenslets' paths wherever the camera sees a lenslet from farther off its "
              "axis than its cell allows (the display's outer columns and rows at 350 mm), which the EIs, toed-in for "
-             "a far viewer to stay on their cells, cannot avoid. The designs differ in pitch too (the compound array "
+             "a far viewer to stay on their cells, cannot avoid. The curved MLA aims its lenslets by its shape (their "
+             "axes meet 2 m in front), and over a flat panel its gap grows toward the left and right edges (1.4 mm "
+             "more at the outer columns): those columns' images move nearer the display, so its first order holds "
+             "for the centre only. The designs differ in pitch too (the compound array "
              "has 1.58 mm lenslets, 96 x 41 of them), which sets the lateral sampling at every depth.\n\n";
 }
 

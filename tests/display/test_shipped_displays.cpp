@@ -45,7 +45,8 @@ TEST(ShippedDisplays, ToedInPrototypeCentresEachEiOnItsLensletSeenFromTheViewer)
 // 3.3 mm, the barrier MLA's lenslets at the paper's 4 mm gap.
 TEST(ShippedDisplays, TheStackCatalogueLoadsWithItsStatedFirstOrder) {
   auto load = [](const char* name) { return loadDisplay(dataPath(std::string("optics/displays/") + name + ".json")); };
-  for (const char* name : {"double-mla-convex-concave", "compound-symmetric", "pinhole-array", "barrier-mla"}) {
+  for (const char* name :
+       {"double-mla-convex-concave", "compound-symmetric", "pinhole-array", "barrier-mla", "curved-mla-flat-panel"}) {
     const Display d = load(name);
     EXPECT_TRUE(d.stackTraced) << name;
     EXPECT_EQ(d.panel.name, load("paper-prototype").panel.name) << name;
@@ -66,4 +67,12 @@ TEST(ShippedDisplays, TheStackCatalogueLoadsWithItsStatedFirstOrder) {
   EXPECT_TRUE(stackFirstOrder(*pinhole.stack).afocal);
   EXPECT_NEAR(pinhole.reconstructionGapMm, 3.3, 1e-12);
   EXPECT_NEAR(load("barrier-mla").reconstructionGapMm, 4.0, 1e-3);
+  // The curved array: the prototype's gap to H on its axis; its edge EIs (where the outermost
+  // axes meet the flat panel) lie outward of the lenslets by |z_C| tan(X / R) - X.
+  const Display curved = load("curved-mla-flat-panel");
+  EXPECT_NEAR(curved.reconstructionGapMm, 4.0, 1e-3);
+  const EiLayout L = computeLayout(curved);
+  const double X = L.lensX.back(), zc = 2.994 + 2000.0;
+  EXPECT_NEAR(L.eiCentreX(L.eiCols - 1), zc * std::tan(X / 2000.0), 0.5 * L.pixelMm + 1e-9);
+  EXPECT_GT(L.eiCentreX(L.eiCols - 1) - X, 0.05);
 }

@@ -347,12 +347,13 @@ TEST(Studies, ArchitecturesCompareTheCatalogueDesigns) {
   StudyOptions o{dir.string(), ""};
   o.quick = true;
   const StudyReport r = runArchitectures(o);
-  ASSERT_EQ(r.values.size(), 5u);
+  ASSERT_EQ(r.values.size(), 6u);
   for (const auto& v : r.values) EXPECT_TRUE(v.pass) << v.name << " measured " << v.measured << " bound " << v.predicted;
   EXPECT_TRUE(r.pass);
   expectFiles(r);
   EXPECT_FALSE(fs::exists(dir / ".architectures-runs"));
-  for (const char* d : {"paper-prototype", "double-mla-convex-concave", "compound-symmetric", "pinhole-array", "barrier-mla"})
+  for (const char* d : {"paper-prototype", "double-mla-convex-concave", "compound-symmetric", "pinhole-array", "barrier-mla",
+                        "curved-mla-flat-panel"})
     for (const char* what : {"contact_sheet_", "budget_"})
       EXPECT_TRUE(fs::exists(dir / (std::string(what) + d + ".png"))) << what << d;
   std::ifstream f(dir / "report.md");
