@@ -195,7 +195,9 @@ std::string discussionText(const std::vector<DesignRun>& runs) {
              "a far viewer to stay on their cells, cannot avoid. The curved MLA aims its lenslets by its shape (their "
              "axes meet 2 m in front), and over a flat panel its gap grows toward the left and right edges (1.4 mm "
              "more at the outer columns): those columns' images move nearer the display, so its first order holds "
-             "for the centre only. The designs differ in pitch too (the compound array "
+             "for the centre only. Its lenslets sit on the EI pitch (0.9875 mm, as the double MLA's), not on "
+             "the prototype's 1.0 mm, so part of its lead over the prototype is that match, not the curvature. The "
+             "designs differ in pitch too (the compound array "
              "has 1.58 mm lenslets, 96 x 41 of them), which sets the lateral sampling at every depth.\n\n";
 }
 
