@@ -124,6 +124,15 @@ void placeHexLattice(const Display& d, EiLayout& L) {
   for (int k = 0; k < K; ++k) L.eiSiteX[size_t(k)] = (k - xc) * a;
   for (int l = 0; l < R; ++l) L.eiSiteY[size_t(l)] = (yc - l) * a * s3 / 2.0;
   L.oddRowEiShiftMm = 0.5 * a;
+  if (d.stack && d.stack->curvature) {  // the EIs where the lenslets' axes meet the panel
+    double fx, fy;
+    L.eiSiteXOdd.resize(size_t(K));
+    for (int k = 0; k < K; ++k) {
+      axisFootOnPanel(*d.stack, L.lensX[size_t(k)], 0.0, fx, fy), L.eiSiteX[size_t(k)] = fx;
+      axisFootOnPanel(*d.stack, L.lensX[size_t(k)] + L.oddRowLensShiftMm, 0.0, fx, fy), L.eiSiteXOdd[size_t(k)] = fx;
+    }
+    for (int l = 0; l < R; ++l) axisFootOnPanel(*d.stack, 0.0, L.lensY[size_t(l)], fx, fy), L.eiSiteY[size_t(l)] = fy;
+  }
   const bool onSites = d.layout == EiLayoutKind::Parallel;
   L.pinholeX = onSites ? L.eiSiteX : L.lensX;
   L.pinholeY = onSites ? L.eiSiteY : L.lensY;
@@ -137,7 +146,11 @@ void sizeHexEia(const Display& d, EiLayout& L) {
   const double a = L.eiSitePitchMm, p = L.pixelMm, s3 = std::sqrt(3.0);
   const double xc = 0.5 * (K - 1) + (R > 1 ? 0.25 : 0.0), yc = 0.5 * (R - 1);
   const double hw = 0.5 * L.eiFlatMm, rc = L.eiFlatMm / s3;
-  const double maxX = (K - 1 - xc + (R > 1 ? 0.5 : 0.0)) * a + hw, maxY = yc * a * s3 / 2.0 + rc;
+  double maxX = (K - 1 - xc + (R > 1 ? 0.5 : 0.0)) * a + hw, maxY = yc * a * s3 / 2.0 + rc;
+  if (!L.eiSiteXOdd.empty())  // curved: the outermost feet
+    maxX = std::max({std::fabs(L.eiSiteX.front()), std::fabs(L.eiSiteX.back()), std::fabs(L.eiSiteXOdd.front()),
+                     std::fabs(L.eiSiteXOdd.back())}) + hw,
+    maxY = std::max(std::fabs(L.eiSiteY.front()), std::fabs(L.eiSiteY.back())) + rc;
   L.eiaW = int(std::ceil(2.0 * maxX / p - 1e-9));
   L.eiaH = int(std::ceil(2.0 * maxY / p - 1e-9));
   if (L.eiaW > L.panelW || L.eiaH > L.panelH)
@@ -158,17 +171,25 @@ void sizeHexEia(const Display& d, EiLayout& L) {
 // Step 3, the Voronoi assignment: each EIA pixel to its nearest site (of the infinite lattice),
 // kept when that site is an indexed EI (and, toed-in, when the pixel is inside its hexagon).
 // Per pixel: its EI in ray order, -1 for none.
-std::vector<int32_t> hexPixelOwners(const EiLayout& L) {
+std::vector<int32_t> hexPixelOwners(const EiLayout& L, const OpticalStack* curved) {
   const int W = L.eiaW, H = L.eiaH, K = L.eiCols, R = L.eiRows;
-  const double a = L.eiSitePitchMm, p = L.pixelMm, s3 = std::sqrt(3.0), hw = 0.5 * L.eiFlatMm;
-  const double rowH = a * s3 / 2.0, sx0 = L.eiSiteX[0], sy0 = L.eiSiteY[0];
+  double a = L.eiSitePitchMm, sx0 = L.eiSiteX[0], sy0 = L.eiSiteY[0];
+  const double p = L.pixelMm, s3 = std::sqrt(3.0), hw = 0.5 * L.eiFlatMm;
+  // A curved stack: the Voronoi cells of the lenslets' arc lattice, each pixel taken at its
+  // projection from the centre of curvature (the reference shell's arc coordinates).
+  CurvedFrame array, panel;
+  if (curved) array = curved->arrayFrame(), panel = curved->panelFrame(), a = L.lensPitchMm, sx0 = L.lensX[0], sy0 = L.lensY[0];
+  const double rowH = a * s3 / 2.0;
   const bool clip = L.kind == EiLayoutKind::ToedIn;
   std::vector<int32_t> owner(size_t(W) * size_t(H), -1);
   for (int r = 0; r < H; ++r) {
-    const double y = (0.5 * H - r - 0.5) * p;
-    const int l0 = int(std::floor((sy0 - y) / rowH + 0.5));
     for (int c = 0; c < W; ++c) {
-      const double x = (c + 0.5 - 0.5 * W) * p;
+      double x = (c + 0.5 - 0.5 * W) * p, y = (0.5 * H - r - 0.5) * p;
+      if (curved) {
+        const Vec3d q = array.toFrame(panel.toWorld(x, y, 0.0));
+        x = q.x, y = q.y;
+      }
+      const int l0 = int(std::floor((sy0 - y) / rowH + 0.5));
       double best = std::numeric_limits<double>::infinity(), bdx = 0.0, bdy = 0.0;
       int bk = 0, bl = 0;
       for (int li = l0 - 1; li <= l0 + 1; ++li) {
@@ -215,8 +236,7 @@ void placeHexBoxes(EiLayout& L, const std::vector<int32_t>& owner) {
   auto fallbackCol = [&](double x) { return std::clamp(int(std::floor(x / p + 0.5 * W)), 0, W - 1); };
   for (int k = 0; k < K; ++k) {
     if (L.eiCol0[size_t(k)] == INT32_MAX) L.eiCol0[size_t(k)] = fallbackCol(L.eiSiteX[size_t(k)]);
-    if (L.eiCol0Odd[size_t(k)] == INT32_MAX)
-      L.eiCol0Odd[size_t(k)] = fallbackCol(L.eiSiteX[size_t(k)] + 0.5 * L.eiSitePitchMm);
+    if (L.eiCol0Odd[size_t(k)] == INT32_MAX) L.eiCol0Odd[size_t(k)] = fallbackCol(L.eiCentreXAt(k, 1));
   }
   for (int l = 0; l < R; ++l)
     if (L.eiRow0[size_t(l)] == INT32_MAX)
@@ -272,7 +292,8 @@ EiLayout computeHexLayout(const Display& d) {
                      "one number for a hex lattice: the EI pitch along a row (flat-to-flat width) in pixels");
   placeHexLattice(d, L);
   sizeHexEia(d, L);
-  const std::vector<int32_t> owner = hexPixelOwners(L);
+  const bool curved = d.stack && d.stack->curvature;
+  const std::vector<int32_t> owner = hexPixelOwners(L, curved ? &*d.stack : nullptr);
   placeHexBoxes(L, owner);
   L.pixelMap = hexPixelMap(L, owner);
   return L;
@@ -303,6 +324,20 @@ bool EiLayout::eiAtPixel(int col, int row, int& k, int& l) const {
   return true;
 }
 
+bool EiLayout::nearestLens(double x, double y, int& k, int& l) const {
+  if (lensX.empty() || lensY.empty() || !std::isfinite(x) || !std::isfinite(y)) return false;
+  const double rowH = lensRowPitchMm(), P = lensPitchMm;
+  const int l0 = int(std::floor((lensY[0] - y) / rowH + 0.5));
+  double best = std::numeric_limits<double>::infinity();
+  for (int li = l0 - (isHex() ? 1 : 0); li <= l0 + (isHex() ? 1 : 0); ++li) {
+    const double sh = isHex() && (li & 1) ? oddRowLensShiftMm : 0.0;
+    const int ki = int(std::floor((x - lensX[0] - sh) / P + 0.5));
+    const double dx = x - (lensX[0] + sh + ki * P), dy = y - (lensY[0] - li * rowH), d2 = dx * dx + dy * dy;
+    if (d2 < best) best = d2, k = ki, l = li;
+  }
+  return k >= 0 && l >= 0 && k < eiCols && l < eiRows;
+}
+
 AreaMm EiLayout::activeArea() const {
   AreaMm a;
   if (lensX.empty() || lensY.empty()) return a;
@@ -325,8 +360,6 @@ AreaMm EiLayout::activeArea() const {
 EiLayout computeLayout(const Display& d) {
   checkEisCanFit(d);
   if (d.stack && d.stack->curvature) {
-    if (d.mla.lattice == Mla::Lattice::Hex)
-      throw InputError(d.file, "stack.layers", "a hex lattice in a curved stack", "a square lattice (curved hex arrays are not laid out yet)");
     if (d.layout != EiLayoutKind::Parallel)
       throw InputError(d.file, "layout", "\"" + std::string(layoutName(d.layout)) + "\"",
                        "\"parallel\" for a curved stack: its lenslets' axes place the EIs");

@@ -8,10 +8,12 @@
 // has its centre at x = (c + 0.5 - W/2) p, y = (H/2 - r - 0.5) p (p = pixel pitch).
 // EI (k, l): k counts columns from the left, l rows from the top.
 //
-// Curved stacks (display/curved_frame.h; square lattices, parallel layout only): lensX / lensY
-// are the lenslets' arc coordinates on the curved array, and EI (k, l) is centred where lenslet
-// (k, l)'s axis meets the panel (a curved panel's arc coordinates); the pinholes are the lenses'
-// arc positions, the pinhole rays themselves come from mla_optics/stack_chief_rays.h.
+// Curved stacks (display/curved_frame.h; parallel layout only): lensX / lensY are the lenslets'
+// arc coordinates on the curved array, and EI (k, l) is centred where lenslet (k, l)'s axis
+// meets the panel (a curved panel's arc coordinates); on a hex lattice a pixel belongs to the
+// lenslet nearest (in arc coordinates) to the pixel's projection from the centre of curvature,
+// and odd rows' EI centres are eiSiteXOdd. The pinholes are the lenses' arc positions; the
+// pinhole rays themselves come from mla_optics/stack_chief_rays.h.
 //
 // Lattices. Square MLAs give a separable layout: rectangular EIs of eiW x eiH pixels, EI
 // (k, l) covering EIA columns eiCol0[k] .. + eiW and rows eiRow0[l] .. + eiH, its pinhole at
@@ -82,6 +84,7 @@ struct EiLayout {
   std::vector<double> eiSiteX;        // [K] x of the EI centres (Voronoi sites) of even rows, mm
   std::vector<double> eiSiteY;        // [L] y of the EI centres of row l, mm
   std::vector<int> eiCol0Odd;         // [K] first EIA column of the box of EI (k, odd l)
+  std::vector<double> eiSiteXOdd;     // [K] curved stacks: x of the EI centres of odd rows (else empty)
   std::shared_ptr<const EiPixelMap> pixelMap;  // rays of the hex EIs
 
   bool isHex() const { return lattice == Mla::Lattice::Hex; }
@@ -92,7 +95,8 @@ struct EiLayout {
   double pinholeXAt(int k, int l) const { return pinholeX[size_t(k)] + rowShift(oddRowPinholeShiftMm, l); }
   double pinholeYAt(int /*k*/, int l) const { return pinholeY[size_t(l)]; }
   double eiCentreXAt(int k, int l) const {
-    return isHex() ? eiSiteX[size_t(k)] + rowShift(oddRowEiShiftMm, l) : eiCentreX(k);
+    if (!isHex()) return eiCentreX(k);
+    return (l & 1) && !eiSiteXOdd.empty() ? eiSiteXOdd[size_t(k)] : eiSiteX[size_t(k)] + rowShift(oddRowEiShiftMm, l);
   }
   double eiCentreYAt(int /*k*/, int l) const { return isHex() ? eiSiteY[size_t(l)] : eiCentreY(l); }
   // First EIA column / row of EI (k, l)'s eiW x eiH box.
@@ -119,6 +123,9 @@ struct EiLayout {
   }
   // The EI that owns EIA pixel (col, row); false (k = l = -1) outside every EI.
   bool eiAtPixel(int col, int row, int& k, int& l) const;
+  // The lens whose centre is nearest (x, y) (lens coordinates: a curved stack's arc lengths);
+  // false when it is not one of the K x L.
+  bool nearestLens(double x, double y, int& k, int& l) const;
   // Calls f(ray, col, row, i, j) for every ray of EI (k, l) in ray order: its EIA pixel
   // (col, row) and box-local pixel (i, j) (j from the top).
   template <class F>

@@ -376,12 +376,14 @@ std::string untracedPart(const OpticalStack& s, std::string& key) {
     if (s.curved() && l.kind == StackLayer::Kind::Barriers && l.lattice == Mla::Lattice::Hex)
       return "barrier walls on a hex lattice in a curved stack";
     if (l.kind != StackLayer::Kind::LensArray) continue;
-    if (s.curved() && l.aperture != Mla::Aperture::Circle && l.apertureMm < l.pitchMm * (1.0 - 1e-12) &&
+    const bool cellShaped = (l.aperture == Mla::Aperture::Hex) == (l.lattice == Mla::Lattice::Hex);
+    if (s.curved() && l.aperture != Mla::Aperture::Circle && (!cellShaped || l.apertureMm < l.pitchMm * (1.0 - 1e-12)) &&
         !(l.back.isPlane() && l.front.isPlane()))
       return "walls between the caps of a curved lens array (a clear aperture smaller than its cell)";
-    const bool cellShape = (l.aperture == Mla::Aperture::Square) == (l.lattice == Mla::Lattice::Square);
-    if (!cellShape && l.aperture != Mla::Aperture::Circle)
-      return "a clear aperture of another shape than its cell (a square on a hex lattice or a hex on a square one)";
+    // A hex aperture's edges on a square lattice lie on no lattice of lines the walls' march can
+    // split at.
+    if (l.aperture == Mla::Aperture::Hex && l.lattice == Mla::Lattice::Square && !(l.back.isPlane() && l.front.isPlane()))
+      return "a hex clear aperture on a square lattice";
   }
   key.clear();
   return "";

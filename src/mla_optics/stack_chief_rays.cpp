@@ -281,8 +281,9 @@ RaySet generateTracedChiefRays(const EiLayout& L, const OpticalStack& stack, dou
       const int k0 = L.eiCols / 2, l0 = L.eiRows / 2;
       table = std::make_unique<ChiefRayTable>(solver, g, L.lensXAt(k0, l0), L.lensYAt(k0, l0), mx, my, o.tableStepMm);
     } else {
-      for (int k = 0; k < L.eiCols; ++k)
-        columnTables.push_back(std::make_unique<ChiefRayTable>(solver, g, L.lensX[size_t(k)], 0.0, mx, my, o.tableStepMm));
+      for (int k = 0; k < L.eiCols; ++k)  // hex: even and odd rows' columns apart
+        for (int parity = 0; parity < (L.isHex() ? 2 : 1); ++parity)
+          columnTables.push_back(std::make_unique<ChiefRayTable>(solver, g, L.lensXAt(k, parity), 0.0, mx, my, o.tableStepMm));
     }
   }
   RaySet rays;
@@ -301,7 +302,8 @@ RaySet generateTracedChiefRays(const EiLayout& L, const OpticalStack& stack, dou
           L.forEachRayOfEi(k, l, [&](int64_t ri, int col, int row, int, int) {
             const double px = L.pixelCentreX(col), py = L.pixelCentreY(row);
             PixelRay r;
-            const ChiefRayTable* lensTable = columnTables.empty() ? table.get() : columnTables[size_t(k)].get();
+            const size_t column = L.isHex() ? size_t(2 * k + (l & 1)) : size_t(k);
+            const ChiefRayTable* lensTable = columnTables.empty() ? table.get() : columnTables[column].get();
             if (lensTable && lensTable->lookup(px - cx, py - cy, r))
               r.o += Vec3d(cx, cy, 0.0);
             else

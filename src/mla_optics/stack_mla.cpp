@@ -66,7 +66,7 @@ void panelArrivalAt(const CurvedFrame& panel, const Point3d& p, const Vec3d& d, 
 }
 
 CurvedIdealMla::CurvedIdealMla(const Display& d, const EiLayout& L, double focalLengthMm, double gapMm)
-    : layout_(&L), f_(focalLengthMm), gapMm_(gapMm), pitchMm_(d.mla.pitchMm) {
+    : layout_(&L), f_(focalLengthMm), gapMm_(gapMm) {
   if (!d.stack || !d.stack->curved()) throw InputError(d.file, "stack", "(flat)", "a curved stack");
   if (L.lensX.empty() || L.lensY.empty()) throw InputError(d.file, "ei_count", "(no lenses)", "at least one lenslet");
   if (!(f_ > 0.0) || !std::isfinite(f_)) throw InputError(d.file, "stack", formatNumber(f_), "a focal length > 0 mm");
@@ -88,11 +88,11 @@ bool CurvedIdealMla::traceToPanel(const Ray& ray, float, FresnelMode, Rng*, Pane
   if (!array_.hitShell(o, d, gapMm_, 0.0, 1e12, t)) return false;
   const Point3d q = o + t * d;
   const Vec3d arc = array_.toFrame(q);
-  const int l = int(std::lround((L.lensY[0] - arc.y) / pitchMm_)), k = int(std::lround((arc.x - L.lensX[0]) / pitchMm_));
-  if (k < 0 || l < 0 || k >= int(L.lensX.size()) || l >= int(L.lensY.size())) return false;
+  int k, l;
+  if (!L.nearestLens(arc.x, arc.y, k, l)) return false;
   Vec3d axis, e1, e2;
-  array_.axisFrame(L.lensX[size_t(k)], L.lensY[size_t(l)], axis, e1, e2);
-  const Vec3d off = q - array_.toWorld(L.lensX[size_t(k)], L.lensY[size_t(l)], gapMm_);
+  array_.axisFrame(L.lensXAt(k, l), L.lensYAt(k, l), axis, e1, e2);
+  const Vec3d off = q - array_.toWorld(L.lensXAt(k, l), L.lensYAt(k, l), gapMm_);
   const double dz = glm::dot(d, axis);
   if (!(dz < 0.0)) return false;
   // The viewer-side slopes, turned by the ideal lens as IdealLensletMla turns them.

@@ -60,7 +60,7 @@ class CurvedIdealMla final : public MlaModel {
  private:
   CurvedFrame array_, panel_;
   const EiLayout* layout_ = nullptr;
-  double f_ = 0.0, gapMm_ = 0.0, pitchMm_ = 1.0;
+  double f_ = 0.0, gapMm_ = 0.0;
   float frontZ_ = 0.0f;
 };
 

@@ -181,7 +181,9 @@ StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double orig
       if (!l.back.isPlane()) back.surface = l.back;
       back.lattice = latticeOf(l, originX, originY);
       back.rClamp = l.apertureRadiusMm();
-      const bool walls = l.aperture != Mla::Aperture::Circle && l.apertureMm < l.pitchMm * (1.0 - 1e-12);
+      // Walls where the clear aperture is not the whole cell: smaller, or a square on a hex cell.
+      const bool cellShaped = (l.aperture == Mla::Aperture::Hex) == (l.lattice == Mla::Lattice::Hex);
+      const bool walls = l.aperture != Mla::Aperture::Circle && (!cellShaped || l.apertureMm < l.pitchMm * (1.0 - 1e-12));
       back.walled = walls && !l.back.isPlane();
       back.apertureShape = l.aperture, back.apertureMm = l.apertureMm;
       Boundary front;
@@ -393,16 +395,20 @@ bool StackTracer::hitCurvedBoundary(const Boundary& b, const Point3d& o, const V
 
 std::vector<StackTracer::WallCrossing> StackTracer::wallCrossings(const Boundary& b, const Point3d& o, const Vec3d& d,
                                                                   double t0, double t1) const {
-  // The lines of every aperture edge: for each side normal e of the cell shape, the cells'
-  // centres project onto e on a 1D lattice of spacing s (square: P; hex: P / 2), and the edges lie
+  // The lines of every aperture edge: for each side normal e of the aperture's shape, the cells'
+  // centres project onto e on a 1D lattice of spacing s (a square lattice onto its axes: P; a hex
+  // lattice onto its cells' normals: P / 2, onto y: its rows' P sqrt(3) / 2), and the edges lie
   // at h = a / 2 either side of each; a crossing that is on no aperture's edge only splits the
   // march.
   std::array<Vec3d, 6> sides;
-  const int count = cellSides(b.lattice.hex, sides);
-  const double s = b.lattice.hex ? b.lattice.pitch / 2.0 : b.lattice.pitch, h = b.apertureMm / 2.0;
+  const bool hexAperture = b.apertureShape == Mla::Aperture::Hex;
+  const int count = cellSides(hexAperture, sides);
+  const double h = b.apertureMm / 2.0;
   std::vector<WallCrossing> cuts;
-  for (int i = 0; i < count; i += (b.lattice.hex ? 1 : 2)) {  // e and -e give the same lines
+  for (int i = 0; i < count; i += (hexAperture ? 1 : 2)) {  // e and -e give the same lines
     const Vec3d& e = sides[i];
+    const double s = !b.lattice.hex ? b.lattice.pitch : std::fabs(e.x) < 1e-12 ? b.lattice.pitch * kSqrt3 / 2.0
+                                                                                 : b.lattice.pitch / 2.0;
     const double du = e.x * d.x + e.y * d.y;
     if (std::fabs(du) < 1e-15) continue;
     const double base = e.x * b.lattice.ox + e.y * b.lattice.oy;

@@ -21,10 +21,11 @@
 // Two lens arrays in contact: the air between their faces (curved on either side) is a region
 // of its own, bounded by both; flat on both sides, the faces are a cemented interface.
 //
-// A lens array whose square (hex) clear aperture is smaller than its square (hex) cell: the cap
-// inside the aperture, flat land outside it at the cap's height at the aperture's corners, and
-// vertical walls between the cap's edge and the land, refracting like any face. The march
-// splits at every line an aperture edge lies on; a change of sign across one is a wall hit.
+// A lens array whose square (hex) clear aperture is smaller than its square (hex) cell, or a
+// square aperture on a hex lattice: the cap inside the aperture, flat land outside it at the
+// cap's height at the aperture's corners, and vertical walls between the cap's edge and the
+// land, refracting like any face. The march splits at every line an aperture edge lies on; a
+// change of sign across one is a wall hit.
 //
 // Curved stacks (display/curved_frame.h): every boundary is the same height field over its shell
 // in the stack's frame (X, Y, W), and the panel a plane or a shell of its own. A ray meets a
@@ -38,9 +39,9 @@
 // A curved stack's barrier walls (square lattices) are the planes through the centre of
 // curvature along its cells' borders.
 //
-// Not modelled yet (the constructor refuses with an InputError naming the layer): clear
-// apertures of another shape than the cell's (a square on a hex lattice), and in a curved stack
-// walls between caps and barrier walls on a hex lattice.
+// Not modelled yet (the constructor refuses with an InputError naming the layer): a hex clear
+// aperture on a square lattice with a curved face, and in a curved stack walls between caps and
+// barrier walls on a hex lattice.
 #include <memory>
 #include <vector>
 

@@ -416,7 +416,8 @@ TEST(CliEia, APinholeArrayDisplaysTracedEiaIsThePinholeModels) {
 
 // A curved display (the small display's MLA bent into a 300 mm cylinder, centre in front) runs
 // from its EIA to a view: traced chief rays by default, the pinhole model's rays through each
-// lenslet's principal point with --chief-rays pinhole (different EIAs: the two models differ).
+// lenslet's principal point with --chief-rays pinhole (different EIAs: the two models differ);
+// on a hex lattice too, every pixel with its chief ray.
 // Refused before any output: a toed-in layout (the curvature aims the lenslets), a curvature that
 // brings the array onto the panel at its edge, barrier walls on a hex lattice in a curved stack.
 TEST(CliEia, ACurvedDisplayRunsFromEiaToViewAndRefusesWhatItCannot) {
@@ -447,6 +448,15 @@ TEST(CliEia, ACurvedDisplayRunsFromEiaToViewAndRefusesWhatItCannot) {
   float peak = 0.0f;
   for (float x : v.data) peak = std::max(peak, x);
   EXPECT_GT(peak, 0.0f);  // the display shows
+  // On a hex lattice: EIs by the lenslets' cells projected from the centre.
+  Json hex = readJsonFile(display);
+  hex["stack"]["layers"][1]["lattice"] = "hex";
+  hex["stack"]["layers"][1]["aperture"] = "hex";
+  const std::string hexDisplay = path("curved_hex.json"), hexEia = path("curved_hex.exr");
+  writeText(hexDisplay, hex.dump(2));
+  r = run("eia --display " + hexDisplay + " --out " + hexEia);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("0 fell back"), std::string::npos) << r.output;
 
   const std::string out = path("curved_bad.exr");
   expectBadInput("eia --display " + display + " --layout toed-in --viewing-distance-mm 500 --out " + out,

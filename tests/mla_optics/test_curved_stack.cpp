@@ -233,41 +233,52 @@ TEST(CurvedStack, ABentPlateHasTheThickMeniscusPower) {
   }
 }
 
-// The view simulation on a curved display (a 9 x 7 EI display on the test panel, a concentric
-// spherical panel, and a flat one): a camera ray along lenslet (k, l)'s axis enters its vertex
-// square on and reaches the panel where that axis meets it, where the layout centres EI (k, l)
-// (to half a pixel), through lenslet (k, l); the ideal model sends it to the same point.
+// The view simulation on a curved display (a 9 x 7 EI display on the test panel, square and hex
+// lattices, a concentric spherical panel and a flat one): a camera ray along lenslet (k, l)'s
+// axis enters its vertex square on and reaches the panel where that axis meets it, where the
+// layout centres EI (k, l) (to half a pixel; a hex EI's centre exactly), through lenslet (k, l);
+// the ideal model sends it to the same point.
 TEST(CurvedStack, ARayAlongALensletsAxisReachesItsEiCentre) {
-  for (bool concentric : {true, false}) {
-    Display d = smallDisplay(9, 7, 9, 0.1, 1.0, 3.3, 4.0, 6);  // 0.9 mm EIs: the axes converge on the panel
-    OpticalStack s = curvedArray(StackCurvature::Shape::Sphere, -40.0, concentric ? std::optional<double>(-37.0) : std::nullopt);
-    s.panelWidthMm = d.panel.widthPx * d.panel.pixelPitchMm, s.panelHeightMm = d.panel.heightPx * d.panel.pixelPitchMm;
-    d.stack = s;
-    const StackAsMla eq = equivalentMla(s);
-    d.mla = eq.mla, d.reconstructionGapMm = eq.gapMm, d.stackTraced = true;
-    const EiLayout L = computeLayout(d);
-    const StackMla real(d, L, d.reconstructionGapMm, FresnelMode::Off);
-    const CurvedIdealMla ideal(d, L, *d.mla.focalLengthMm, d.reconstructionGapMm);
-    const CurvedFrame frame = s.arrayFrame();
-    for (int k : {0, 3, 8})
-      for (int l : {0, 4, 6}) {
-        const double X = L.lensXAt(k, l), Y = L.lensYAt(k, l);
-        double fx, fy;
-        axisFootOnPanel(s, X, Y, fx, fy);
-        EXPECT_NEAR(L.eiCentreX(k), fx, 0.5 * L.pixelMm + 1e-12) << k;
-        EXPECT_NEAR(L.eiCentreY(l), fy, 0.5 * L.pixelMm + 1e-12) << l;
-        const Point3d top = frame.toWorld(X, Y, 30.0);  // on the axis, in front
-        Ray ray;
-        ray.o = Point3(Vec3d(top) - Vec3d(0.0, 0.0, d.reconstructionGapMm));
-        ray.d = Vec3(-frame.up(top));
-        for (const MlaModel* m : {static_cast<const MlaModel*>(&real), static_cast<const MlaModel*>(&ideal)}) {
-          PanelArrival a;
-          ASSERT_TRUE(m->traceToPanel(ray, 550.0f, FresnelMode::Off, nullptr, a)) << k << ", " << l;
-          EXPECT_NEAR(a.p.x, fx, 2e-4) << k << ", " << l;
-          EXPECT_NEAR(a.p.y, fy, 2e-4) << k << ", " << l;
-          EXPECT_EQ(a.lensletK, k);
-          EXPECT_EQ(a.lensletL, l);
+  for (auto lattice : {Mla::Lattice::Square, Mla::Lattice::Hex})
+    for (bool concentric : {true, false}) {
+      Display d = smallDisplay(9, 7, 9, 0.1, 1.0, 3.3, 4.0, 6);  // 0.9 mm EIs: the axes converge on the panel
+      OpticalStack s = curvedArray(StackCurvature::Shape::Sphere, -40.0, concentric ? std::optional<double>(-37.0) : std::nullopt);
+      s.layers[1].lattice = lattice;
+      if (lattice == Mla::Lattice::Hex) s.layers[1].aperture = Mla::Aperture::Hex;
+      s.panelWidthMm = d.panel.widthPx * d.panel.pixelPitchMm, s.panelHeightMm = d.panel.heightPx * d.panel.pixelPitchMm;
+      d.stack = s;
+      const StackAsMla eq = equivalentMla(s);
+      d.mla = eq.mla, d.reconstructionGapMm = eq.gapMm, d.stackTraced = true;
+      const EiLayout L = computeLayout(d);
+      const StackMla real(d, L, d.reconstructionGapMm, FresnelMode::Off);
+      const CurvedIdealMla ideal(d, L, *d.mla.focalLengthMm, d.reconstructionGapMm);
+      const CurvedFrame frame = s.arrayFrame();
+      const double tolerance = lattice == Mla::Lattice::Hex ? 1e-12 : 0.5 * L.pixelMm + 1e-12;
+      for (int k : {0, 3, 8})
+        for (int l : {0, 3, 4, 6}) {
+          const double X = L.lensXAt(k, l), Y = L.lensYAt(k, l);
+          double fx, fy;
+          axisFootOnPanel(s, X, Y, fx, fy);
+          EXPECT_NEAR(L.eiCentreXAt(k, l), fx, tolerance) << k << ", " << l;
+          EXPECT_NEAR(L.eiCentreYAt(k, l), fy, tolerance) << k << ", " << l;
+          const Point3d top = frame.toWorld(X, Y, 30.0);  // on the axis, in front
+          Ray ray;
+          ray.o = Point3(Vec3d(top) - Vec3d(0.0, 0.0, d.reconstructionGapMm));
+          ray.d = Vec3(-frame.up(top));
+          for (const MlaModel* m : {static_cast<const MlaModel*>(&real), static_cast<const MlaModel*>(&ideal)}) {
+            PanelArrival a;
+            ASSERT_TRUE(m->traceToPanel(ray, 550.0f, FresnelMode::Off, nullptr, a)) << k << ", " << l;
+            EXPECT_NEAR(a.p.x, fx, 2e-4) << k << ", " << l;
+            EXPECT_NEAR(a.p.y, fy, 2e-4) << k << ", " << l;
+            EXPECT_EQ(a.lensletK, k);
+            EXPECT_EQ(a.lensletL, l);
+          }
         }
+      if (lattice == Mla::Lattice::Hex) {  // every pixel on the EI of the lens nearest its projection
+        int k, l;
+        ASSERT_TRUE(L.eiAtPixel(L.eiaW / 2, L.eiaH / 2, k, l));
+        EXPECT_LT(std::hypot(L.eiCentreXAt(k, l) - L.pixelCentreX(L.eiaW / 2), L.eiCentreYAt(k, l) - L.pixelCentreY(L.eiaH / 2)),
+                  0.6);
       }
-  }
+    }
 }

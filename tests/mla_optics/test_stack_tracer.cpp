@@ -324,26 +324,29 @@ TEST(StackTracer, AConcaveFrontFaceAboveTheFrontPlaneIsMet) {
   EXPECT_FALSE(corner.towardViewer);
 }
 
-// Lenslets whose square clear aperture (0.8 mm) is smaller than their 1 mm cells: caps inside,
-// flat land at the caps' corner height outside, vertical walls between. A ray through the land at
-// normal incidence passes straight, as through a plate; rays hit the walls (the exits differ
-// from the same array without walls); every path is reversible (traced back from where it left,
-// a ray returns to its panel point, to 1e-7 mm; this needs rays that leave a cap to re-enter a
-// neighbour that rises in their way); and with Fresnel off the energy is conserved.
-TEST(StackTracer, WallsBetweenCapsRefractAndConserveEnergy) {
-  auto stack = [](double aperture) {
+// Lenslets on 1 mm cells whose clear aperture is smaller than the cell (a 0.8 mm square on a square
+// lattice, a 0.7 mm square on a hex one): caps inside, flat land at the caps' corner height
+// outside, vertical walls between. A ray through the land at normal incidence passes straight, as
+// through a plate; rays hit the walls (the exits differ from the same array without walls);
+// every path is reversible (traced back from where it left, a ray returns to its panel point, to
+// 1e-7 mm; this needs rays that leave a cap to re-enter a neighbour that rises in their way); and
+// with Fresnel off the energy is conserved.
+static void expectWallsRefractAndConserveEnergy(Mla::Lattice lattice, double aperture, const Point3d& landPoint) {
+  auto stack = [&](Mla::Aperture shape, double size) {
     OpticalStack s;
     StackLayer lens = layer(StackLayer::Kind::LensArray, 1.2);
     lens.material = "PMMA";
-    lens.aperture = Mla::Aperture::Square;
-    lens.apertureMm = aperture;
+    lens.lattice = lattice;
+    lens.aperture = shape;
+    lens.apertureMm = size;
     lens.front.radiusMm = -1.0;
     s.layers = {layer(StackLayer::Kind::Gap, 2.0), lens};
     return s;
   };
-  const StackTracer walled(stack(0.8)), open(stack(1.0));
+  const StackTracer walled(stack(Mla::Aperture::Square, aperture)),
+      open(stack(lattice == Mla::Lattice::Hex ? Mla::Aperture::Hex : Mla::Aperture::Square, 1.0));
   StackExit land;
-  ASSERT_TRUE(walled.trace({0.45, 0.45, 0.0}, {0.0, 0.0, 1.0}, 550.0, nullptr, land));
+  ASSERT_TRUE(walled.trace(landPoint, {0.0, 0.0, 1.0}, 550.0, nullptr, land));
   EXPECT_TRUE(land.towardViewer);
   EXPECT_NEAR(glm::length(land.d - Vec3d(0.0, 0.0, 1.0)), 0.0, 1e-12);
   // Whether the ray that left at `a` returns, traced back from just in front, to (o, -d).
@@ -375,4 +378,14 @@ TEST(StackTracer, WallsBetweenCapsRefractAndConserveEnergy) {
     EXPECT_GE(reversed[k], left[k] - left[k] / 100) << k;  // all but long TIR-guided paths (20+ events)
   }
   EXPECT_NEAR(energyOut / n, 1.0, 1e-6);
+}
+
+TEST(StackTracer, WallsBetweenCapsRefractAndConserveEnergy) {
+  expectWallsRefractAndConserveEnergy(Mla::Lattice::Square, 0.8, {0.45, 0.45, 0.0});
+}
+
+// A square aperture on a hex lattice (its cells' flats 1 mm apart, vertical): the land between
+// the square and the hexagon at (0.45, 0).
+TEST(StackTracer, ASquareApertureOnAHexLatticeHasWallsToo) {
+  expectWallsRefractAndConserveEnergy(Mla::Lattice::Hex, 0.7, {0.45, 0.0, 0.0});
 }
