@@ -25,7 +25,7 @@ void addDisplayCommand(CLI::App& app) {
   addSetting(info, "json", opts->json);
   info->callback([opts] {
     const std::string path = displayPathOrDefault(opts->file);
-    Display d = loadDisplay(path, DisplayUse::Describe);
+    Display d = loadDisplay(path);
     if (opts->json)
       std::printf("%s\n", displayInfoJson(d).dump(2).c_str());
     else

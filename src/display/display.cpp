@@ -86,7 +86,7 @@ static void checkMaterial(const Display& d, const std::string& key, const std::s
 }
 
 // "stack" in place of "mla" and "reconstruction_gap_mm": the stack places the panel.
-static void readStack(const JsonObject& o, Display& d, DisplayUse use) {
+static void readStack(const JsonObject& o, Display& d) {
   if (o.has("mla") || o.has("reconstruction_gap_mm"))
     o.fail(o.has("mla") ? "mla" : "reconstruction_gap_mm", "given with \"stack\"",
            "either a stack (which places the panel) or an mla with its reconstruction_gap_mm");
@@ -97,22 +97,13 @@ static void readStack(const JsonObject& o, Display& d, DisplayUse use) {
     d.reconstructionGapMm = checkGapMm(m->gapMm, d.file, "stack (panel to the lenslets' principal plane)");
     return;
   }
-  std::string key;
-  if (const std::string part = untracedPart(*d.stack, key); !part.empty()) {
-    if (use == DisplayUse::Trace)
-      throw InputError(d.file, key, part,
-                       "optics the ray tracer models so far: flat stacks whose clear apertures have their cells' "
-                       "shape or are round (`inim display info` analyses any stack)");
-    d.stackOnly = true;
-    return;
-  }
   const StackAsMla equivalent = equivalentMla(*d.stack);
   d.mla = equivalent.mla;
   d.reconstructionGapMm = checkGapMm(equivalent.gapMm, d.file, "stack (panel to the stack's principal plane)");
   d.stackTraced = true;
 }
 
-Display loadDisplay(const std::string& path, DisplayUse use) {
+Display loadDisplay(const std::string& path) {
   Json j = readJsonFile(path);
   JsonObject o(j, path, "");
   Display d;
@@ -120,7 +111,7 @@ Display loadDisplay(const std::string& path, DisplayUse use) {
   d.name = o.string("name");
   d.panel = readPart<Panel>(o, "panel", "panels", parsePanel, loadPanel);
   if (o.has("stack")) {
-    readStack(o, d, use);
+    readStack(o, d);
     d.generationGapMm = checkGapMm(o.number("generation_gap_mm"), path, "generation_gap_mm");
   } else {
     d.mla = readPart<Mla>(o, "mla", "mlas", parseMla, loadMla);
@@ -139,7 +130,6 @@ Display loadDisplay(const std::string& path, DisplayUse use) {
     d.viewingDistanceMm = o.positive("viewing_distance_mm");
   d.assumptions = readAssumptions(o);
   o.rejectUnknown();
-  if (d.stackOnly) return d;
   checkMaterial(d, "mla.material", d.mla.material, d.mla.file);
   if (d.panel.coverGlass) checkMaterial(d, "panel.cover_glass.material", d.panel.coverGlass->material, d.panel.file);
   (void)computeLayout(d);  // validates the EI layout against the panel

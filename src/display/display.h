@@ -38,24 +38,18 @@ struct Display {
   std::vector<std::string> assumptions;
   // The optical stack the file gives in place of "mla" (docs/formats.md §3.6a). When it is one
   // lens array behind air, `mla` and reconstructionGapMm are derived from it and every stage
-  // uses them. Otherwise, when the stack tracer models it (`stackTraced`), `mla` is the
-  // equivalent MLA that places the EIs (equivalentMla), the gap is the panel's to the stack's
-  // principal plane H, and `view` refracts through every layer; else only a description was
-  // asked for (`stackOnly`: mla is empty).
+  // uses them. Otherwise (`stackTraced`), `mla` is the equivalent MLA that places the EIs
+  // (equivalentMla), the gap is the panel's to the stack's principal plane H, and `view`
+  // refracts through every layer.
   std::optional<OpticalStack> stack;
   bool stackTraced = false;
-  bool stackOnly = false;
 };
-
-// What a display is loaded for: every stage (Trace) needs optics the ray tracer models;
-// `display info` (Describe) also takes stacks it does not model yet, to analyse them.
-enum class DisplayUse { Trace, Describe };
 
 // Reads a display description. "panel" and "mla" are either inline objects, a file path
 // ending in .json (relative to the display file), or a catalog name resolved to
 // optics/panels/<name>.json or optics/mlas/<name>.json under the data folder.
 // Validates the layout too (computeLayout), so a display that loads can generate rays.
-Display loadDisplay(const std::string& path, DisplayUse use = DisplayUse::Trace);
+Display loadDisplay(const std::string& path);
 // optics/displays/paper-prototype.json.
 std::string defaultDisplayPath();
 // `path`, or the default display when it is empty.

@@ -395,24 +395,15 @@ Json stackJson(const OpticalStack& s, const StackFirstOrder& fo) {
 }
 
 // A display whose stack is described only: the panel and the stack.
-std::string stackOnlyText(const Display& d) {
-  return formatText("%s (%s)\n  panel %d x %d px, %.4f mm pixels\n  ray tracing: not yet for this stack (only "
-                    "described and analysed here)\n",
-                    d.name.c_str(), d.file.c_str(), d.panel.widthPx, d.panel.heightPx, d.panel.pixelPitchMm) +
-         stackText(*d.stack, stackFirstOrder(*d.stack));
-}
-
 }  // namespace
 
 Json displayInfoJson(const Display& d) {
-  if (d.stackOnly) return {{"name", d.name}, {"file", d.file}, {"stack", stackJson(*d.stack, stackFirstOrder(*d.stack))}};
   Json j = toJson(derive(d));
   if (d.stack) j["stack"] = stackJson(*d.stack, stackFirstOrder(*d.stack));
   return j;
 }
 
 std::string displayInfoText(const Display& d) {
-  if (d.stackOnly) return stackOnlyText(d);
   std::string text = toText(derive(d));
   if (d.stack) text += "\n" + stackText(*d.stack, stackFirstOrder(*d.stack));
   return text;

@@ -368,27 +368,6 @@ std::optional<StackAsMla> mlaFromStack(const OpticalStack& s, std::string& why) 
   return r;
 }
 
-std::string untracedPart(const OpticalStack& s, std::string& key) {
-  key = "stack";
-  for (size_t i = 0; i < s.layers.size(); ++i) {
-    const StackLayer& l = s.layers[i];
-    key = l.keyPath;
-    if (s.curved() && l.kind == StackLayer::Kind::Barriers && l.lattice == Mla::Lattice::Hex)
-      return "barrier walls on a hex lattice in a curved stack";
-    if (l.kind != StackLayer::Kind::LensArray) continue;
-    const bool cellShaped = (l.aperture == Mla::Aperture::Hex) == (l.lattice == Mla::Lattice::Hex);
-    if (s.curved() && l.aperture != Mla::Aperture::Circle && (!cellShaped || l.apertureMm < l.pitchMm * (1.0 - 1e-12)) &&
-        !(l.back.isPlane() && l.front.isPlane()))
-      return "walls between the caps of a curved lens array (a clear aperture smaller than its cell)";
-    // A hex aperture's edges on a square lattice lie on no lattice of lines the walls' march can
-    // split at.
-    if (l.aperture == Mla::Aperture::Hex && l.lattice == Mla::Lattice::Square && !(l.back.isPlane() && l.front.isPlane()))
-      return "a hex clear aperture on a square lattice";
-  }
-  key.clear();
-  return "";
-}
-
 StackAsMla equivalentMla(const OpticalStack& s) {
   const StackFirstOrder fo = stackFirstOrder(s);
   auto first = [&](StackLayer::Kind k) {

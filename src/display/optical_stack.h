@@ -115,10 +115,6 @@ struct StackAsMla {
 };
 std::optional<StackAsMla> mlaFromStack(const OpticalStack& stack, std::string& why);
 
-// What in `stack` the stack ray tracer (mla_optics/stack_tracer.h) does not model yet, naming
-// the layer's key path in `key`; empty when it models all of it.
-std::string untracedPart(const OpticalStack& stack, std::string& key);
-
 // For a stack the MLA of today does not describe: the MLA that stands in for it where the EI
 // layout and the pinhole model need one (the first lens array's lattice, pitch and aperture,
 // the stack's effective focal length at n_d, its material), and the gap from the panel to the

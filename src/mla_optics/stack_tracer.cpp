@@ -152,9 +152,6 @@ struct StackTracer::Region {
 
 StackTracer::StackTracer(const OpticalStack& s, FresnelMode fresnel, double originX, double originY)
     : fresnel_(fresnel), array_(std::make_unique<CurvedFrame>(s.arrayFrame())), panel_(std::make_unique<CurvedFrame>(s.panelFrame())) {
-  std::string key;
-  if (const std::string part = untracedPart(s, key); !part.empty())
-    throw InputError(s.file, key, part, "a stack the ray tracer models (docs/formats.md §3.6a)");
   const MaterialCatalog& catalog = MaterialCatalog::standard();
   Boundary panel;  // z = 0: the panel emits into the first layer
   if (!panel_->flat()) panel.frame = panel_.get();
@@ -291,6 +288,7 @@ Vec3d StackTracer::boundaryNormalAt(const Boundary& b, const Point3d& p) const {
   b.lattice.centre(q.x, q.y, cx, cy);
   const double dx = b.scaleX * (q.x - cx), dy = b.scaleY * (q.y - cy), r = std::hypot(dx, dy);
   if (r >= b.rClamp || r == 0.0) return up;
+  if (b.walled && !insideShape(b.apertureShape, b.apertureMm, dx, dy)) return up;  // the land
   const double k = sagSlope(*b.surface, r) / r;
   return glm::normalize(up - k * (b.scaleX * dx * b.frame->gradX(p) + b.scaleY * dy * b.frame->gradY(p)));
 }
@@ -309,7 +307,7 @@ Vec3d StackTracer::boundaryNormal(const Boundary& b, double x, double y) const {
 bool StackTracer::hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t,
                               Vec3d* wallNormal) const {
   if (wallNormal) *wallNormal = Vec3d(0.0);
-  if (b.frame) return hitCurvedBoundary(b, o, d, tMax, t);
+  if (b.frame) return hitCurvedBoundary(b, o, d, tMax, t, wallNormal);
   // The part of the ray inside the slab [zMin, zMax].
   double t0 = kEps, t1 = tMax;
   if (d.z != 0.0) {
@@ -366,7 +364,8 @@ bool StackTracer::hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& 
   return march(a, t1);
 }
 
-bool StackTracer::hitCurvedBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t) const {
+bool StackTracer::hitCurvedBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t,
+                                    Vec3d* wallNormal) const {
   const CurvedFrame& fr = *b.frame;
   // W is |R| - rho: good to a few ulps of the radius, which a new ray must start beyond.
   const double R = std::fabs(fr.radiusMm), eps = kEps + 64.0 * (std::nextafter(R, kNone) - R);
@@ -378,10 +377,10 @@ bool StackTracer::hitCurvedBoundary(const Boundary& b, const Point3d& o, const V
   // ray's slope (it turns against the local axis along the way).
   const double lipschitz = 1.0 + b.maxSlope * b.stretch;
   const double minStep = std::min(b.lattice.pitch * b.scaleX / 128.0, std::max(b.zMax - b.zMin, 1e-12) / 16.0);
-  for (int i = 0; i < parts; ++i) {
-    double a = lo[i], fa = f(a);
-    while (a < hi[i]) {
-      const double m = std::min(a + std::max(minStep, std::fabs(fa) / lipschitz), hi[i]), fm = f(m);
+  auto march = [&](double a, double c) {
+    double fa = f(a);
+    while (a < c) {
+      const double m = std::min(a + std::max(minStep, std::fabs(fa) / lipschitz), c), fm = f(m);
       if ((fa <= 0.0) != (fm <= 0.0)) {
         t = refineRoot(f, a, fa, m, fm);
         const Vec3d q = fr.toFrame(o + t * d);
@@ -389,12 +388,124 @@ bool StackTracer::hitCurvedBoundary(const Boundary& b, const Point3d& o, const V
       }
       a = m, fa = fm;
     }
+    return false;
+  };
+  for (int i = 0; i < parts; ++i) {
+    if (!b.walled) {
+      if (march(lo[i], hi[i])) return true;
+      continue;
+    }
+    // Walls, as flat: march between the ray's crossings of the aperture edges' planes.
+    double a = lo[i];
+    const std::vector<WallCrossing> cuts = b.apertureShape == Mla::Aperture::Hex ? apertureCrossings(b, o, d, lo[i], hi[i])
+                                                                                 : curvedWallCrossings(b, o, d, lo[i], hi[i]);
+    for (const WallCrossing& cut : cuts) {
+      const double before = std::max(a, cut.t - 1e-10);
+      if (march(a, before)) return true;
+      const double fl = f(before), fr2 = f(std::min(cut.t + 1e-10, hi[i]));
+      if ((fl <= 0.0) != (fr2 <= 0.0)) {
+        t = cut.t;
+        if (wallNormal && std::fabs(fl - fr2) > 1e-9) *wallNormal = cut.normal;
+        return true;
+      }
+      a = std::min(cut.t + 1e-10, hi[i]);
+    }
+    if (march(a, hi[i])) return true;
   }
   return false;
 }
 
+// A curved array's square apertures: their edges lie on planes through the centre of curvature
+// (constant X; a sphere's constant Y, a cylinder's y = Y), at the cells' centres' arc positions
+// (square lattice: every P; hex: every P / 2 in X, every row in Y) plus or minus half the aperture
+// (physical, so a / (2 scale) in arc length). Along a line the angles change monotonically.
+std::vector<StackTracer::WallCrossing> StackTracer::curvedWallCrossings(const Boundary& b, const Point3d& o,
+                                                                        const Vec3d& d, double t0, double t1) const {
+  const CurvedFrame& fr = *b.frame;
+  const double R = std::fabs(fr.radiusMm), sg = fr.sign();
+  const Vec3d v0 = o - fr.centre();
+  std::vector<WallCrossing> cuts;
+  for (int axis = 0; axis < 2; ++axis) {
+    const double spacing = axis == 0 ? (b.lattice.hex ? b.lattice.pitch / 2.0 : b.lattice.pitch)
+                                     : (b.lattice.hex ? b.lattice.pitch * kSqrt3 / 2.0 : b.lattice.pitch);
+    const double h = b.apertureMm / 2.0 / (axis == 0 ? b.scaleX : b.scaleY), base = axis == 0 ? b.lattice.ox : b.lattice.oy;
+    const Vec3d qa = fr.toFrame(o + t0 * d), qb = fr.toFrame(o + t1 * d);
+    const double ua = (axis == 0 ? qa.x : qa.y) - base, ub = (axis == 0 ? qb.x : qb.y) - base;
+    const double lo = std::min(ua, ub), hi = std::max(ua, ub);
+    const bool plane = axis == 0 || fr.shape == CurvedFrame::Shape::Sphere;
+    for (double m = std::floor((lo - h) / spacing); m * spacing - h <= hi; m += 1.0)
+      for (double side : {-1.0, 1.0}) {
+        const double value = m * spacing + side * h;
+        if (value < lo || value > hi) continue;
+        Vec3d n;
+        double t;
+        if (plane) {  // the plane at angle value / R: n . v = 0
+          const double a = (value + base) / R;
+          n = axis == 0 ? Vec3d(std::cos(a), 0.0, sg * std::sin(a)) : Vec3d(0.0, std::cos(a), sg * std::sin(a));
+          const double along = glm::dot(n, d);
+          if (std::fabs(along) < 1e-15) continue;
+          t = -glm::dot(n, v0) / along;
+        } else {  // a cylinder's y = value + base
+          n = Vec3d(0.0, 1.0, 0.0);
+          if (std::fabs(d.y) < 1e-15) continue;
+          t = (value + base - o.y) / d.y;
+        }
+        if (t >= t0 && t <= t1) cuts.push_back({t, side * n});
+        if (cuts.size() > 4096) break;
+      }
+  }
+  std::sort(cuts.begin(), cuts.end(), [](const WallCrossing& x, const WallCrossing& y) { return x.t < y.t; });
+  return cuts;
+}
+
+// Aperture edges on no lattice of lines or planes (a hex aperture on a square lattice; a curved
+// array's hex apertures): where the ray's point crosses into or out of its cell's aperture, found
+// by stepping 1/256 of the pitch and bisecting each change to 1e-13 mm (a corner cut within one
+// step is missed); the wall's normal is the gradient of the aperture side it crossed.
+std::vector<StackTracer::WallCrossing> StackTracer::apertureCrossings(const Boundary& b, const Point3d& o, const Vec3d& d,
+                                                                      double t0, double t1) const {
+  std::array<Vec3d, 6> sides;
+  const int count = cellSides(b.apertureShape == Mla::Aperture::Hex, sides);
+  auto local = [&](double s, double& x, double& y) {
+    const Point3d p = o + s * d;
+    const Vec3d q = b.frame ? b.frame->toFrame(p) : Vec3d(p);
+    double cx, cy;
+    b.lattice.centre(q.x, q.y, cx, cy);
+    x = b.scaleX * (q.x - cx), y = b.scaleY * (q.y - cy);
+  };
+  auto inside = [&](double s) {
+    double x, y;
+    local(s, x, y);
+    return insideShape(b.apertureShape, b.apertureMm, x, y);
+  };
+  std::vector<WallCrossing> cuts;
+  const double step = b.lattice.pitch * b.scaleX / 256.0;
+  bool in = inside(t0);
+  for (double a = t0; a < t1 && cuts.size() < 4096;) {
+    const double c = std::min(a + step, t1);
+    if (inside(c) == in) {
+      a = c;
+      continue;
+    }
+    double lo = a, hi = c;
+    while (hi - lo > kBisectTol) (inside(0.5 * (lo + hi)) == in ? lo : hi) = 0.5 * (lo + hi);
+    const double t = 0.5 * (lo + hi);
+    double x, y;
+    local(in ? lo : hi, x, y);  // the side of the aperture at the crossing, from its inside
+    int side = 0;
+    for (int i = 1; i < count; ++i)
+      if (sides[i].x * x + sides[i].y * y > sides[side].x * x + sides[side].y * y) side = i;
+    const Point3d p = o + t * d;
+    const Vec3d n = b.frame ? sides[side].x * b.frame->gradX(p) + sides[side].y * b.frame->gradY(p) : sides[side];
+    cuts.push_back({t, glm::normalize(n)});
+    in = !in, a = c;
+  }
+  return cuts;
+}
+
 std::vector<StackTracer::WallCrossing> StackTracer::wallCrossings(const Boundary& b, const Point3d& o, const Vec3d& d,
                                                                   double t0, double t1) const {
+  if (b.apertureShape == Mla::Aperture::Hex && !b.lattice.hex) return apertureCrossings(b, o, d, t0, t1);
   // The lines of every aperture edge: for each side normal e of the aperture's shape, the cells'
   // centres project onto e on a 1D lattice of spacing s (a square lattice onto its axes: P; a hex
   // lattice onto its cells' normals: P / 2, onto y: its rows' P sqrt(3) / 2), and the edges lie
@@ -448,9 +559,10 @@ bool StackTracer::hitWall(const Region& r, const Point3d& o, const Vec3d& d, dou
 bool StackTracer::hitCurvedWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double& t,
                                 Vec3d& n) const {
   const CurvedFrame& fr = *r.frame;
-  const Vec3d q = fr.toFrame(o), v = o - fr.centre();
+  const Vec3d q = fr.toFrame(o + 1e-9 * d), v = o - fr.centre();  // the cell ahead: o may lie on a wall
   double cx, cy;
   r.lattice.centre(q.x, q.y, cx, cy);
+  if (r.lattice.hex) return hitCurvedHexWall(r, o, d, tMax, cx, cy, t, n);
   const double R = std::fabs(fr.radiusMm), s = fr.sign();
   t = kNone;
   auto face = [&](const Vec3d& normal, double offset, double inward) {  // inside: inward (N.v + offset) > 0
@@ -470,6 +582,41 @@ bool StackTracer::hitCurvedWall(const Region& r, const Point3d& o, const Vec3d& 
     }
   }
   return t <= tMax;
+}
+
+// A hex cell's borders in the arc coordinates are no planes: march to where the ray leaves the
+// cell's open hexagon, g(t) = max_i e_i . (X - cx, Y - cy) - openHalf turning positive (g changes
+// at most `stretch` per mm along the ray, the map's bound), then refine; the wall's normal is the
+// gradient of the side it crossed.
+bool StackTracer::hitCurvedHexWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double cx, double cy,
+                                   double& t, Vec3d& n) const {
+  const CurvedFrame& fr = *r.frame;
+  std::array<Vec3d, 6> sides;
+  cellSides(true, sides);
+  int side = 0;
+  auto g = [&](double s) {
+    const Vec3d q = fr.toFrame(o + s * d);
+    double best = -kNone;
+    for (int i = 0; i < 6; ++i)
+      if (const double e = sides[i].x * (q.x - cx) + sides[i].y * (q.y - cy); e > best) best = e, side = i;
+    return best - r.openHalf;
+  };
+  const double stretch = 2.0, minStep = r.lattice.pitch / 256.0;
+  const double tEnd = std::min(tMax, 1e3);
+  double a = 0.0, ga = g(a);
+  if (ga > 0.0) ga = -1e-15;  // on a wall, leaving it: inside
+  while (a < tEnd) {
+    const double m = std::min(a + std::max(minStep, -ga / stretch), tEnd), gm = g(m);
+    if (gm > 0.0) {
+      t = refineRoot(g, a, ga, m, gm);
+      g(t + 1e-12);  // the side crossed
+      const Point3d p = o + t * d;
+      n = -glm::normalize(sides[side].x * fr.gradX(p) + sides[side].y * fr.gradY(p));  // into the cell
+      return true;
+    }
+    a = m, ga = gm;
+  }
+  return false;
 }
 
 bool StackTracer::passesSheet(const Region& r, const Point3d& a0, const Point3d& b0) const {

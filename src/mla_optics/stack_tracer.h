@@ -36,12 +36,15 @@
 // spheres or cylinders that would otherwise close around their centre); a ray that finds no
 // surface there leaves the stack around its edge (StackExit::aroundEdge).
 //
-// A curved stack's barrier walls (square lattices) are the planes through the centre of
-// curvature along its cells' borders.
+// A curved stack's barrier walls are the planes through the centre of curvature along its cells'
+// borders on a square lattice; on a hex lattice a march finds where a ray leaves its cell's
+// open hexagon in the arc coordinates.
 //
-// Not modelled yet (the constructor refuses with an InputError naming the layer): a hex clear
-// aperture on a square lattice with a curved face, and in a curved stack walls between caps and
-// barrier walls on a hex lattice.
+// A curved array's walls between caps stand on planes through the centre of curvature for square
+// apertures, as its barrier walls do. Apertures whose edges lie on no lattice of lines or planes
+// (a hex aperture on a square lattice, a curved array's hex apertures) are found by stepping
+// 1/256 of the pitch along the ray and bisecting where the point crosses an aperture's edge (a
+// corner cut within one step is missed).
 #include <memory>
 #include <vector>
 
@@ -96,7 +99,8 @@ class StackTracer {
   // World point p's height above boundary b along its frame's W; the unit normal there, up.
   double heightAbove(const Boundary& b, const Point3d& p) const;
   Vec3d boundaryNormalAt(const Boundary& b, const Point3d& p) const;
-  bool hitCurvedBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t) const;
+  bool hitCurvedBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t,
+                         Vec3d* wallNormal) const;
   void setCurvedExtent(const OpticalStack& s);
   // Where the ray meets boundary b within tMax; on a wall between a lens array's caps, its
   // horizontal normal in *wallNormal (else zero).
@@ -108,8 +112,14 @@ class StackTracer {
   };
   std::vector<WallCrossing> wallCrossings(const Boundary& b, const Point3d& o, const Vec3d& d, double t0,
                                           double t1) const;
+  std::vector<WallCrossing> curvedWallCrossings(const Boundary& b, const Point3d& o, const Vec3d& d, double t0,
+                                                double t1) const;
+  std::vector<WallCrossing> apertureCrossings(const Boundary& b, const Point3d& o, const Vec3d& d, double t0,
+                                              double t1) const;
   bool hitWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double& t, Vec3d& n) const;
   bool hitCurvedWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double& t, Vec3d& n) const;
+  bool hitCurvedHexWall(const Region& r, const Point3d& o, const Vec3d& d, double tMax, double cx, double cy, double& t,
+                        Vec3d& n) const;
   bool passesSheet(const Region& r, const Point3d& a, const Point3d& b) const;
   double index(const Region& r, double lambdaNm) const;
 

@@ -212,7 +212,6 @@ TEST(OpticalStack, ADisplayFileWithOneLensArrayIsTodaysMla) {
                                  "front": {"radius_mm": -1.62}}]})");
   const Display d = loadDisplay(prototypeWithStack("one_layer.json", stack));
   ASSERT_TRUE(d.stack.has_value());
-  EXPECT_FALSE(d.stackOnly);
   EXPECT_NEAR(d.reconstructionGapMm, legacy.reconstructionGapMm, 1e-12);
   EXPECT_EQ(d.generationGapMm, legacy.generationGapMm);
   EXPECT_EQ(d.mla.pitchMm, legacy.mla.pitchMm);
@@ -228,17 +227,16 @@ TEST(OpticalStack, ADisplayFileWithOneLensArrayIsTodaysMla) {
 }
 
 // A flat compound stack loads for every stage: the equivalent MLA has the stack's focal length
-// and the gap runs to its principal plane H; curved, it is traced too. With barrier walls on a hex
-// lattice, which the tracer does not model in a curved stack, it is analysed by `display info` (Describe) and
-// refused by every other stage (Trace). "mla" beside "stack" is an error either way.
-TEST(OpticalStack, ACompoundStackIsTracedACurvedOneWithWallsOnlyDescribed) {
+// and the gap runs to its principal plane H; curved, it is traced too, on a hex lattice with walls
+// between its caps (a hex aperture smaller than its cell) as well, and `display info` describes
+// it. "mla" beside "stack" is an error.
+TEST(OpticalStack, ACompoundStackIsTracedFlatCurvedAndWithWallsBetweenHexCaps) {
   Json stack = Json::parse(R"({"layers": [{"type": "gap", "thickness_mm": 3},
       {"type": "lens_array", "pitch_mm": 1.0, "material": "PMMA", "thickness_mm": 1.5, "front": {"radius_mm": -1.62}},
       {"type": "gap", "thickness_mm": 1},
       {"type": "lens_array", "pitch_mm": 1.0, "material": "PMMA", "thickness_mm": 1.5, "back": {"radius_mm": 1.62}}]})");
   const Display flat = loadDisplay(prototypeWithStack("compound.json", stack));
   EXPECT_TRUE(flat.stackTraced);
-  EXPECT_FALSE(flat.stackOnly);
   const StackFirstOrder fo = stackFirstOrder(*flat.stack);
   EXPECT_NEAR(*flat.mla.focalLengthMm, fo.focalLengthMm, 1e-12);
   EXPECT_NEAR(flat.reconstructionGapMm, fo.reducedGapMm, 1e-12);
@@ -247,19 +245,21 @@ TEST(OpticalStack, ACompoundStackIsTracedACurvedOneWithWallsOnlyDescribed) {
   stack["curvature"] = {{"shape", "sphere"}, {"radius_mm", 4000}};
   for (int i : {1, 3}) stack["layers"][i]["pitch_mm"] = 0.9875;  // curved, the EIs lie under their lenslets
   EXPECT_TRUE(loadDisplay(prototypeWithStack("curved.json", stack)).stackTraced);
-  stack["layers"].push_back({{"type", "barriers"}, {"pitch_mm", 1.0}, {"height_mm", 1.0}, {"lattice", "hex"}});
-  const std::string file = prototypeWithStack("curved-walls.json", stack);
-  EXPECT_EQ(fixtures::expectInputError([&] { loadDisplay(file); }).key(), "stack.layers[4]");
-  const Display d = loadDisplay(file, DisplayUse::Describe);
-  EXPECT_TRUE(d.stackOnly);
+  for (int i : {1, 3})  // hex caps inside a smaller hex aperture: walls between them, curved
+    stack["layers"][i]["lattice"] = "hex", stack["layers"][i]["aperture"] = "hex", stack["layers"][i]["aperture_mm"] = 0.8;
+  Json hexWalls = readJsonFile(prototypeWithStack("curved-hex-walls.json", stack));
+  hexWalls["ei_count"] = {150, 65};  // hex rows shifted by half a pitch: one column fewer fits
+  const std::string file = fixtures::scratchFile("curved-hex-walls-150.json", hexWalls.dump(2));
+  const Display d = loadDisplay(file);
+  EXPECT_TRUE(d.stackTraced);
   const std::string text = displayInfoText(d);
   EXPECT_NE(text.find("effective focal length"), std::string::npos) << text;
-  EXPECT_NE(text.find("not yet"), std::string::npos) << text;
+  EXPECT_NE(text.find("curved: lenslet centres on a sphere"), std::string::npos) << text;
   EXPECT_FALSE(displayInfoJson(d)["stack"]["afocal"].get<bool>());
   Json both = readJsonFile(file);
   both["mla"] = "fresnel-630";
   const std::string bad = fixtures::scratchFile("both.json", both.dump());
-  EXPECT_EQ(fixtures::expectInputError([&] { loadDisplay(bad, DisplayUse::Describe); }).key(), "mla");
+  EXPECT_EQ(fixtures::expectInputError([&] { loadDisplay(bad); }).key(), "mla");
 }
 
 }  // namespace

@@ -153,43 +153,58 @@ TEST(CurvedStack, ALosslessCurvedStackConservesEnergyAndIsReversible) {
   }
 }
 
-// Barrier walls in a curved stack stand on the cells' borders, planes through the centre of
-// curvature: absorbing, they stop exactly the rays whose straight path through the wall layer
-// ends in another cell than it began (judged by the frame's arc coordinates), and pass the rest
-// unchanged; mirrors (reflectance 1), they lose nothing (energy to 1e-6).
+// Barrier walls in a curved stack stand on the cells' borders (square cells: planes through the
+// centre of curvature; hex cells: their hexagons in the arc coordinates): absorbing, they stop
+// exactly the rays whose straight path through the wall layer ends in another cell than it began
+// (judged by the frame's arc coordinates), and pass the rest unchanged; mirrors (reflectance 1),
+// they lose nothing (energy to 1e-6).
 TEST(CurvedStack, BarrierWallsStandOnTheCellBordersThroughTheCentre) {
-  for (auto shape : {StackCurvature::Shape::Cylinder, StackCurvature::Shape::Sphere})
-    for (double R : {-150.0, 120.0}) {  // behind: the array dips 0.55 mm at the corners
-      OpticalStack s = curvedArray(shape, R);
-      StackLayer walls = layer(StackLayer::Kind::Barriers, 2.5);
-      s.layers = {layer(StackLayer::Kind::Gap, 1.0), walls};
-      const CurvedFrame frame = s.arrayFrame();
-      const StackTracer absorbing(s);
-      s.layers[1].reflectance = 1.0;
-      const StackTracer mirrors(s);
-      Rng rng(4, 7);
-      int passed = 0, stopped = 0;
-      double energy = 0.0;
-      for (int i = 0; i < 3000; ++i) {
-        const double theta = 40.0 * M_PI / 180.0 * std::sqrt(rng.uniformDouble()), phi = 2.0 * M_PI * rng.uniformDouble();
-        const Vec3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-        const Point3d o(-10.0 + 20.0 * rng.uniformDouble(), -8.0 + 16.0 * rng.uniformDouble(), 0.0);
-        double t0, t1;
-        ASSERT_TRUE(frame.hitShell(o, d, 1.0, 0.0, 1e9, t0) && frame.hitShell(o, d, 3.5, 0.0, 1e9, t1));
-        const Vec3d a = frame.toFrame(o + t0 * d), b = frame.toFrame(o + t1 * d);
-        const bool sameCell = std::lround(a.x) == std::lround(b.x) && std::lround(a.y) == std::lround(b.y);
-        StackExit ex;
-        const bool left = absorbing.trace(o, d, 550.0, nullptr, ex) && ex.towardViewer;
-        EXPECT_EQ(left, sameCell) << i;
-        if (left) EXPECT_LT(angle(ex.d, d), 1e-12) << i;
-        passed += left, stopped += !left;
-        StackExit m;
-        if (mirrors.trace(o, d, 550.0, nullptr, m) || m.trapped) energy += m.throughput;
-      }
-      EXPECT_GT(passed, 200);
-      EXPECT_GT(stopped, 300);
-      EXPECT_NEAR(energy / 3000.0, 1.0, 1e-6);
+  auto cellOf = [](bool hex, const Vec3d& q) {  // the nearest lattice point (pitch 1, origin 0)
+    if (!hex) return std::make_pair(double(std::lround(q.x)), double(std::lround(q.y)));
+    const double rowH = std::sqrt(3.0) / 2.0;
+    std::pair<double, double> best{0.0, 0.0};
+    double bestD = 1e300;
+    for (double l = std::floor(q.y / rowH); l <= std::floor(q.y / rowH) + 1.0; l += 1.0) {
+      const double shift = std::fmod(std::fabs(l), 2.0) == 1.0 ? 0.5 : 0.0, x = shift + std::round(q.x - shift);
+      const double d2 = (x - q.x) * (x - q.x) + (l * rowH - q.y) * (l * rowH - q.y);
+      if (d2 < bestD) bestD = d2, best = {x, l};
     }
+    return best;
+  };
+  for (auto lattice : {Mla::Lattice::Square, Mla::Lattice::Hex})
+    for (auto shape : {StackCurvature::Shape::Cylinder, StackCurvature::Shape::Sphere})
+      for (double R : {-150.0, 120.0}) {  // behind: the array dips 0.55 mm at the corners
+        OpticalStack s = curvedArray(shape, R);
+        StackLayer walls = layer(StackLayer::Kind::Barriers, 2.5);
+        walls.lattice = lattice;
+        s.layers = {layer(StackLayer::Kind::Gap, 1.0), walls};
+        const CurvedFrame frame = s.arrayFrame();
+        const StackTracer absorbing(s);
+        s.layers[1].reflectance = 1.0;
+        const StackTracer mirrors(s);
+        Rng rng(4, 7);
+        int passed = 0, stopped = 0;
+        double energy = 0.0;
+        for (int i = 0; i < 3000; ++i) {
+          const double theta = 40.0 * M_PI / 180.0 * std::sqrt(rng.uniformDouble()), phi = 2.0 * M_PI * rng.uniformDouble();
+          const Vec3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+          const Point3d o(-10.0 + 20.0 * rng.uniformDouble(), -8.0 + 16.0 * rng.uniformDouble(), 0.0);
+          double t0, t1;
+          ASSERT_TRUE(frame.hitShell(o, d, 1.0, 0.0, 1e9, t0) && frame.hitShell(o, d, 3.5, 0.0, 1e9, t1));
+          const bool hex = lattice == Mla::Lattice::Hex;
+          const bool sameCell = cellOf(hex, frame.toFrame(o + t0 * d)) == cellOf(hex, frame.toFrame(o + t1 * d));
+          StackExit ex;
+          const bool left = absorbing.trace(o, d, 550.0, nullptr, ex) && ex.towardViewer;
+          EXPECT_EQ(left, sameCell) << int(lattice) << " " << R << " " << i;
+          if (left) EXPECT_LT(angle(ex.d, d), 1e-12) << i;
+          passed += left, stopped += !left;
+          StackExit m;
+          if (mirrors.trace(o, d, 550.0, nullptr, m) || m.trapped) energy += m.throughput;
+        }
+        EXPECT_GT(passed, 200);
+        EXPECT_GT(stopped, 300);
+        EXPECT_NEAR(energy / 3000.0, 1.0, 1e-6);
+      }
 }
 
 // A radius of 1e7 mm is flat to 1e-6 mm over the few cells the rays cross: the curved tracer
