@@ -299,11 +299,11 @@ RaySet generateTracedChiefRays(const EiLayout& L, const OpticalStack& stack, dou
         for (int64_t e = e0; e < e1; ++e) {
           const int k = int(e / L.eiRows), l = L.eiRows - 1 - int(e % L.eiRows);
           const double cx = L.lensXAt(k, l), cy = L.lensYAt(k, l);
+          const size_t column = L.isHex() ? size_t(2 * k + (l & 1)) : size_t(k);
+          const ChiefRayTable* lensTable = columnTables.empty() ? table.get() : columnTables[column].get();
           L.forEachRayOfEi(k, l, [&](int64_t ri, int col, int row, int, int) {
             const double px = L.pixelCentreX(col), py = L.pixelCentreY(row);
             PixelRay r;
-            const size_t column = L.isHex() ? size_t(2 * k + (l & 1)) : size_t(k);
-            const ChiefRayTable* lensTable = columnTables.empty() ? table.get() : columnTables[column].get();
             if (lensTable && lensTable->lookup(px - cx, py - cy, r))
               r.o += Vec3d(cx, cy, 0.0);
             else
@@ -311,6 +311,7 @@ RaySet generateTracedChiefRays(const EiLayout& L, const OpticalStack& stack, dou
             rays.set(size_t(ri), Vec3(r.o), Vec3(r.d));
             fallback += r.real || o.pinholeOnly ? 0 : 1;
             crosstalk += r.crosstalk ? 1 : 0;
+            if (o.pinholeOnly) return;  // the rays are the pinhole rays: no deviation to measure
             const Vec3d pinhole = solver.curved() ? solver.pinholeDirection(px, py, cx, cy)
                                                   : glm::normalize(Vec3d(cx - px, cy - py, g));
             const double dev = angleDeg(pinhole, r.d);

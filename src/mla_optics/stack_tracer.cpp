@@ -112,6 +112,41 @@ double refineRoot(const F& f, double a, double fa, double c, double fc) {
   return 0.5 * (a + c);
 }
 
+// The first root of f in [a, c] that `accept` takes: steps of max(minStep, |f| / lipschitz), a step
+// that cannot pass a root, each change of sign refined.
+template <class F, class Accept>
+bool marchToRoot(const F& f, double a, double c, double minStep, double lipschitz, const Accept& accept, double& t) {
+  double fa = f(a);
+  while (a < c) {
+    const double m = std::min(a + std::max(minStep, std::fabs(fa) / lipschitz), c), fm = f(m);
+    if ((fa <= 0.0) != (fm <= 0.0)) {
+      t = refineRoot(f, a, fa, m, fm);
+      if (accept(t)) return true;
+    }
+    a = m, fa = fm;
+  }
+  return false;
+}
+
+// A walled surface (f jumps where the ray crosses an aperture's edge): march between the
+// crossings `cuts` (sorted) over [a, end]; at each, a change of sign across it is a hit on the
+// wall there, its normal in *wallNormal.
+template <class F, class March, class Cuts>
+bool marchBetweenCuts(const F& f, const March& march, const Cuts& cuts, double a, double end, double& t, Vec3d* wallNormal) {
+  for (const auto& cut : cuts) {
+    const double before = std::max(a, cut.t - 1e-10);
+    if (march(a, before)) return true;
+    const double fl = f(before), fr = f(std::min(cut.t + 1e-10, end));
+    if ((fl <= 0.0) != (fr <= 0.0)) {
+      t = cut.t;
+      if (wallNormal && std::fabs(fl - fr) > 1e-9) *wallNormal = cut.normal;
+      return true;
+    }
+    a = std::min(cut.t + 1e-10, end);
+  }
+  return march(a, end);
+}
+
 }  // namespace
 
 struct StackTracer::Boundary {
@@ -333,35 +368,9 @@ bool StackTracer::hitBoundary(const Boundary& b, const Point3d& o, const Vec3d& 
   if (across > 0.0) minStep = b.lattice.pitch / 128.0 / across;
   if (d.z != 0.0) minStep = std::min(minStep, depth / 16.0 / std::fabs(d.z));
   if (!std::isfinite(minStep)) return false;
-  auto march = [&](double a, double c) {
-    double fa = f(a);
-    while (a < c) {
-      const double m = std::min(a + std::max(minStep, std::fabs(fa) / lipschitz), c), fm = f(m);
-      if ((fa <= 0.0) != (fm <= 0.0)) {
-        t = refineRoot(f, a, fa, m, fm);
-        return true;
-      }
-      a = m, fa = fm;
-    }
-    return false;
-  };
+  auto march = [&](double a, double c) { return marchToRoot(f, a, c, minStep, lipschitz, [](double) { return true; }, t); };
   if (!b.walled) return march(t0, t1);
-  // Walls: f jumps where the ray crosses an aperture's edge. March between those crossings; at
-  // each, a change of sign across it is a hit on the wall there.
-  std::vector<WallCrossing> cuts = wallCrossings(b, o, d, t0, t1);
-  double a = t0;
-  for (const WallCrossing& cut : cuts) {
-    const double before = std::max(a, cut.t - 1e-10);
-    if (march(a, before)) return true;
-    const double fl = f(before), fr = f(std::min(cut.t + 1e-10, t1));
-    if ((fl <= 0.0) != (fr <= 0.0)) {
-      t = cut.t;
-      if (wallNormal && std::fabs(fl - fr) > 1e-9) *wallNormal = cut.normal;
-      return true;
-    }
-    a = std::min(cut.t + 1e-10, t1);
-  }
-  return march(a, t1);
+  return marchBetweenCuts(f, march, wallCrossings(b, o, d, t0, t1), t0, t1, t, wallNormal);
 }
 
 bool StackTracer::hitCurvedBoundary(const Boundary& b, const Point3d& o, const Vec3d& d, double tMax, double& t,
@@ -377,40 +386,20 @@ bool StackTracer::hitCurvedBoundary(const Boundary& b, const Point3d& o, const V
   // ray's slope (it turns against the local axis along the way).
   const double lipschitz = 1.0 + b.maxSlope * b.stretch;
   const double minStep = std::min(b.lattice.pitch * b.scaleX / 128.0, std::max(b.zMax - b.zMin, 1e-12) / 16.0);
-  auto march = [&](double a, double c) {
-    double fa = f(a);
-    while (a < c) {
-      const double m = std::min(a + std::max(minStep, std::fabs(fa) / lipschitz), c), fm = f(m);
-      if ((fa <= 0.0) != (fm <= 0.0)) {
-        t = refineRoot(f, a, fa, m, fm);
-        const Vec3d q = fr.toFrame(o + t * d);
-        if (std::fabs(q.x) <= extentX_ && std::fabs(q.y) <= extentY_) return true;
-      }
-      a = m, fa = fm;
-    }
-    return false;
+  auto onArray = [&](double s) {  // the array ends at its extent
+    const Vec3d q = fr.toFrame(o + s * d);
+    return std::fabs(q.x) <= extentX_ && std::fabs(q.y) <= extentY_;
   };
+  auto march = [&](double a, double c) { return marchToRoot(f, a, c, minStep, lipschitz, onArray, t); };
   for (int i = 0; i < parts; ++i) {
     if (!b.walled) {
       if (march(lo[i], hi[i])) return true;
       continue;
     }
     // Walls, as flat: march between the ray's crossings of the aperture edges' planes.
-    double a = lo[i];
     const std::vector<WallCrossing> cuts = b.apertureShape == Mla::Aperture::Hex ? apertureCrossings(b, o, d, lo[i], hi[i])
                                                                                  : curvedWallCrossings(b, o, d, lo[i], hi[i]);
-    for (const WallCrossing& cut : cuts) {
-      const double before = std::max(a, cut.t - 1e-10);
-      if (march(a, before)) return true;
-      const double fl = f(before), fr2 = f(std::min(cut.t + 1e-10, hi[i]));
-      if ((fl <= 0.0) != (fr2 <= 0.0)) {
-        t = cut.t;
-        if (wallNormal && std::fabs(fl - fr2) > 1e-9) *wallNormal = cut.normal;
-        return true;
-      }
-      a = std::min(cut.t + 1e-10, hi[i]);
-    }
-    if (march(a, hi[i])) return true;
+    if (marchBetweenCuts(f, march, cuts, lo[i], hi[i], t, wallNormal)) return true;
   }
   return false;
 }

@@ -7,6 +7,7 @@
 #include "display/display.h"
 #include "display/ei_layout.h"
 #include "mla_optics/real_mla.h"
+#include "core/rng.h"
 #include "spectral/dispersion.h"
 
 namespace mla_test {
@@ -67,6 +68,13 @@ inline Vec3d cross(const Vec3d& a, const Vec3d& b) {
 }
 inline double dot(const Vec3d& a, const Vec3d& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline Vec3d unit(const Vec3d& v) { return v / norm(v); }
+// A direction toward +z within maxDeg of it (theta = maxDeg sqrt(u1), phi = 2 pi u2): the
+// stack tests' random rays.
+inline Vec3d coneDirection(Rng& rng, double maxDeg) {
+  const double theta = maxDeg * M_PI / 180.0 * std::sqrt(rng.uniformDouble()), phi = 2.0 * M_PI * rng.uniformDouble();
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
 // Angle between unit vectors, accurate near 0.
 inline double angle(const Vec3d& a, const Vec3d& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
 

@@ -129,8 +129,7 @@ TEST(CurvedStack, ALosslessCurvedStackConservesEnergyAndIsReversible) {
     double in = 0.0, out = 0.0;
     int reversed = 0, exact = 0, front = 0, edge = 0;
     for (int i = 0; i < 4000; ++i) {
-      const double theta = 50.0 * M_PI / 180.0 * std::sqrt(rng.uniformDouble()), phi = 2.0 * M_PI * rng.uniformDouble();
-      const Vec3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      const Vec3d d = coneDirection(rng, 50.0);
       const Point3d o(-10.0 + 20.0 * rng.uniformDouble(), -8.0 + 16.0 * rng.uniformDouble(), 0.0);
       StackExit ex;
       in += 1.0;
@@ -186,8 +185,7 @@ TEST(CurvedStack, BarrierWallsStandOnTheCellBordersThroughTheCentre) {
         int passed = 0, stopped = 0;
         double energy = 0.0;
         for (int i = 0; i < 3000; ++i) {
-          const double theta = 40.0 * M_PI / 180.0 * std::sqrt(rng.uniformDouble()), phi = 2.0 * M_PI * rng.uniformDouble();
-          const Vec3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+          const Vec3d d = coneDirection(rng, 40.0);
           const Point3d o(-10.0 + 20.0 * rng.uniformDouble(), -8.0 + 16.0 * rng.uniformDouble(), 0.0);
           double t0, t1;
           ASSERT_TRUE(frame.hitShell(o, d, 1.0, 0.0, 1e9, t0) && frame.hitShell(o, d, 3.5, 0.0, 1e9, t1));
@@ -218,8 +216,7 @@ TEST(CurvedStack, AHugeRadiusIsTheFlatStack) {
   Rng rng(8, 2);
   int both = 0;
   for (int i = 0; i < 1000; ++i) {
-    const double theta = 30.0 * M_PI / 180.0 * std::sqrt(rng.uniformDouble()), phi = 2.0 * M_PI * rng.uniformDouble();
-    const Vec3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    const Vec3d d = coneDirection(rng, 30.0);
     const Point3d o(-3.0 + 6.0 * rng.uniformDouble(), -3.0 + 6.0 * rng.uniformDouble(), 0.0);
     StackExit x, y;
     const bool ra = a.trace(o, d, 550.0, nullptr, x), rb = b.trace(o, d, 550.0, nullptr, y);

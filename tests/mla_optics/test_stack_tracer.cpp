@@ -65,8 +65,7 @@ TEST(StackTracer, AgreesWithTheExactTracerOfTodaysMla) {
     int both = 0, agreeOnFate = 0;
     for (int i = 0; i < 5000; ++i) {
       const double x = -2.5 + 5.0 * rng.uniformDouble(), y = -2.5 + 5.0 * rng.uniformDouble();
-      const double theta = 25.0 * M_PI / 180.0 * std::sqrt(rng.uniformDouble()), phi = 2.0 * M_PI * rng.uniformDouble();
-      const Vec3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      const Vec3d d = coneDirection(rng, 25.0);
       MlaExit ex;
       StackExit sx;
       const bool a = exact->traceToViewer({x, y, exact->panelZ()}, d, 550.0, nullptr, ex);
@@ -249,8 +248,7 @@ TEST(StackTracer, ALosslessStackConservesEnergy) {
   double energyIn = 0.0, energyOut = 0.0;
   int back = 0, trapped = 0;
   for (int i = 0; i < 20000; ++i) {
-    const double theta = 60.0 * M_PI / 180.0 * std::sqrt(rng.uniformDouble()), phi = 2.0 * M_PI * rng.uniformDouble();
-    const Vec3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    const Vec3d d = coneDirection(rng, 60.0);
     StackExit ex;
     energyIn += 1.0;
     if (tracer.trace({-3.0 + 6.0 * rng.uniformDouble(), -3.0 + 6.0 * rng.uniformDouble(), 0.0}, d, 550.0, nullptr, ex))
@@ -332,8 +330,7 @@ static void expectWallsRefractAndConserveEnergy(Mla::Lattice lattice, Mla::Apert
   double energyOut = 0.0;
   const int n = 4000;
   for (int i = 0; i < n; ++i) {
-    const double theta = 50.0 * M_PI / 180.0 * std::sqrt(rng.uniformDouble()), phi = 2.0 * M_PI * rng.uniformDouble();
-    const Vec3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    const Vec3d d = coneDirection(rng, 50.0);
     const Point3d o(-1.0 + 2.0 * rng.uniformDouble(), -1.0 + 2.0 * rng.uniformDouble(), 0.0);
     StackExit a, b;
     const bool ra = walled.trace(o, d, 550.0, nullptr, a), rb = open.trace(o, d, 550.0, nullptr, b);
