@@ -228,17 +228,18 @@ RealLensCameraModel::RealLensCameraModel(LensSystem lens, const SensorGeometry& 
                      "a focus distance the lens can reach (the sensor would sit " + formatNumber(d) +
                          " mm behind the last vertex)");
   lens_.setSensorDistanceMm(d);
+  indices550_ = lens_.indicesAt(550.0);
 
   ExitPupilBounds::Settings ps = settings.pupil;
   if (ps.wavelengthsNm.empty()) {
     ps.wavelengthsNm = {lambda};
     if (lens_.isDispersive()) ps.wavelengthsNm = {double(kLambdaMin), lambda, double(kLambdaMax)};
   }
-  bounds_ = ExitPupilBounds(lens_, sensor.halfDiagonalMm() * 1.0001, ps);
+  bounds_ = ExitPupilBounds::shared(lens_, sensor.halfDiagonalMm() * 1.0001, ps);
 
   // Centre irradiance per unit radiance: E = integral over the rear plane of cos^4 / z^2.
   e0_ = 0.0;
-  const PupilBox& b = bounds_.box(0.0);
+  const PupilBox& b = bounds_->box(0.0);
   if (!b.empty) {
     const int n = 160;
     const Vec2d cell = (b.hi - b.lo) / double(n);
@@ -246,10 +247,10 @@ RealLensCameraModel::RealLensCameraModel(LensSystem lens, const SensorGeometry& 
     LensRay lr;
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const Point3d q(b.lo.x + (i + 0.5) * cell.x, b.lo.y + (j + 0.5) * cell.y, bounds_.rearZ());
+        const Point3d q(b.lo.x + (i + 0.5) * cell.x, b.lo.y + (j + 0.5) * cell.y, bounds_->rearZ());
         sum += traceFromSensor({0.0, 0.0}, q, lambda, lr);
       }
-    const double z = lens_.sensorZ() - bounds_.rearZ();
+    const double z = lens_.sensorZ() - bounds_->rearZ();
     e0_ = sum * cell.x * cell.y / (z * z);
   }
   if (!(e0_ > 0.0))
@@ -270,7 +271,9 @@ double RealLensCameraModel::traceFromSensor(const Vec2d& s, const Point3d& rearP
   if (!(cosT > 0.0)) return 0.0;
   TraceOptions opt;
   opt.fresnel = settings_.fresnel;
-  TraceResult tr = lens_.trace(r, lambdaNm, TraceDirection::ImageToObject, opt);
+  TraceResult tr = lambdaNm == 550.0 && !indices550_.empty()
+                       ? lens_.traceWithIndices(r, indices550_.data(), TraceDirection::ImageToObject, opt)
+                       : lens_.trace(r, lambdaNm, TraceDirection::ImageToObject, opt);
   if (!tr.ok()) return 0.0;
   const double c2 = cosT * cosT;
   return c2 * c2 * tr.transmittance;
@@ -279,10 +282,10 @@ double RealLensCameraModel::traceFromSensor(const Vec2d& s, const Point3d& rearP
 double RealLensCameraModel::sampleLensRay(const Vec2d& s, Vec2 uLens, double lambdaNm, LensRay& r) const {
   Point3d q;
   double pdf = 0.0;
-  if (!bounds_.sample(s, uLens, q, pdf)) return 0.0;
+  if (!bounds_->sample(s, uLens, q, pdf)) return 0.0;
   const double w = traceFromSensor(s, q, lambdaNm, r);
   if (w == 0.0) return 0.0;
-  const double z = lens_.sensorZ() - bounds_.rearZ();
+  const double z = lens_.sensorZ() - bounds_->rearZ();
   return w / (z * z * pdf);
 }
 
@@ -305,7 +308,7 @@ float RealLensCameraModel::generateRay(Vec2 pixel, Vec2 uLens, float lambdaNm, R
 bool RealLensCameraModel::apertureDomain(Vec2 pixel, Vec2d& lo, Vec2d& hi) const {
   const Vec2d s = sensorPoint(pixel);
   const double r = std::sqrt(s.x * s.x + s.y * s.y);
-  const PupilBox& b = bounds_.box(r);
+  const PupilBox& b = bounds_->box(r);
   if (b.empty) return false;
   const double c = r > 0.0 ? s.x / r : 1.0, sn = r > 0.0 ? s.y / r : 0.0;
   lo = Vec2d(1e300);
@@ -326,10 +329,10 @@ bool RealLensCameraModel::apertureDomain(Vec2 pixel, Vec2d& lo, Vec2d& hi) const
 // irradiance per unit radiance per mm^2 of that plane, normalised like generateRay.
 float RealLensCameraModel::apertureRay(Vec2 pixel, const Vec2d& a, float lambdaNm, Ray& out) const {
   LensRay lr;
-  const double w = traceFromSensor(sensorPoint(pixel), Point3d(a.x, a.y, bounds_.rearZ()), lambdaNm, lr);
+  const double w = traceFromSensor(sensorPoint(pixel), Point3d(a.x, a.y, bounds_->rearZ()), lambdaNm, lr);
   if (!(w > 0.0)) return 0.0f;
   out = lensToWorld(lr);
-  const double z = lens_.sensorZ() - bounds_.rearZ();
+  const double z = lens_.sensorZ() - bounds_->rearZ();
   return float(w * (1.0 / (z * z * e0_)));
 }
 

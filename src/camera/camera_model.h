@@ -190,7 +190,7 @@ class RealLensCameraModel final : public CameraModel {
 
   const LensSystem& lens() const { return lens_; }
   const LensInfo& lensInfo() const { return info_; }
-  const ExitPupilBounds& pupilBounds() const { return bounds_; }
+  const ExitPupilBounds& pupilBounds() const { return *bounds_; }
   const Settings& settings() const { return settings_; }
   double sensorDistanceMm() const { return lens_.sensorDistanceMm(); }
   double focusDistanceMm() const { return focus_; }
@@ -202,8 +202,11 @@ class RealLensCameraModel final : public CameraModel {
   LensSystem lens_;
   LensInfo info_;
   Settings settings_;
-  ExitPupilBounds bounds_;
+  std::shared_ptr<const ExitPupilBounds> bounds_;  // shared by the cameras of one lens (fig11's poses)
   double focus_ = 0.0, e0_ = 1.0;
+  // The media's indices at 550 nm, where non-dispersive camera rays are traced: looked up once
+  // instead of per ray (a tenth of a reference's time).
+  std::vector<double> indices550_;
 };
 
 }  // namespace inim

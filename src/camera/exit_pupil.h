@@ -7,8 +7,12 @@
 //
 // Each bin's box is the union, over a few sensor radii in the bin and over the given
 // wavelengths, of a grid x grid scan of the square 1.5 x the rear clear radius (pbrt's
-// scan window), expanded by 1.5 grid cells. A sensor point off the x axis uses its bin's box
-// rotated by the point's polar angle.
+// scan window), expanded by 1.5 grid cells: box(r), the aperture's domain
+// (CameraModel::apertureDomain). A sensor point off the x axis uses its bin's box
+// rotated by the point's polar angle. sample() draws from a tighter shape: that box scanned
+// again at the same grid, expanded by 1.5 of the finer cells, or the ellipse inscribed in it
+// where every passing cell (its four corners) lies inside that ellipse.
+#include <memory>
 #include <vector>
 
 #include "camera/lens_system.h"
@@ -19,7 +23,10 @@ namespace inim {
 struct PupilBox {
   Vec2d lo{0.0}, hi{0.0};
   bool empty = true;
-  double area() const { return empty ? 0.0 : (hi.x - lo.x) * (hi.y - lo.y); }
+  // Every passing cell of the scan lies in the ellipse inscribed in the box: it is sampled
+  // instead (a round pupil: 21 % fewer rays vignetted for nothing).
+  bool ellipse = false;
+  double area() const { return empty ? 0.0 : (ellipse ? 0.25 * kPiD : 1.0) * (hi.x - lo.x) * (hi.y - lo.y); }
   void extend(const Vec2d& p);
 };
 
@@ -36,6 +43,10 @@ class ExitPupilBounds {
   // Scans the lens with its current sensor distance. Parallel (TBB), deterministic.
   ExitPupilBounds(const LensSystem& lens, double rMaxMm, const Settings& settings);
 
+  // The bounds of this lens, sensor distance, rMax and settings, scanned once per process: the
+  // cameras of fig11's poses and the budget's rungs share one lens (a scan costs 0.5 s of CPU).
+  static std::shared_ptr<const ExitPupilBounds> shared(const LensSystem& lens, double rMaxMm, const Settings& settings);
+
   // A point on the rear-vertex plane (lens coordinates, z = rearZ()) for the sensor point
   // (x, y), with its pdf per unit area; false when no ray from there passes.
   bool sample(const Vec2d& sensorXY, const Vec2& u, Point3d& rearPoint, double& pdfArea) const;
@@ -47,7 +58,10 @@ class ExitPupilBounds {
   double windowHalfWidth() const { return window_; }
 
  private:
+  PupilBox scanBin(const LensSystem& lens, const std::vector<std::vector<double>>& indices, int bin, int nBins, int nR,
+                   int grid, const Vec2d& lo, const Vec2d& hi, std::vector<Vec2d>& passing) const;
   std::vector<PupilBox> boxes_;
+  std::vector<PupilBox> sampling_;  // per bin: the box scanned again, or its ellipse (sample())
   double rearZ_ = 0.0, rMax_ = 0.0, window_ = 0.0;
 };
 
