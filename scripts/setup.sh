@@ -9,7 +9,7 @@ BUILD_DIR="${INIM_BUILD_DIR:-$ROOT/build/release}"
 PACKAGES=(build-essential cmake pkg-config libembree-dev libopenexr-dev libopencolorio-dev
           libglm-dev libtbb-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev
           libcli11-dev libgtest-dev libbenchmark-dev libcairo2-dev libpango1.0-dev libfontconfig-dev
-          fonts-dejavu-core opencolorio-tools python3-numpy libcivetweb-dev)
+          fonts-dejavu-core opencolorio-tools python3-numpy libcivetweb-dev libssl-dev)
 PACKAGES_ONLY=0
 if [ "${1:-}" = "--packages-only" ]; then
   PACKAGES_ONLY=1

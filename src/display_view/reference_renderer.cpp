@@ -10,6 +10,7 @@
 #include "spectral/color.h"
 #include "core/qmc.h"
 #include "display_view/aperture_mean.h"
+#include "display_view/reference_cache.h"
 
 namespace inim {
 
@@ -156,6 +157,13 @@ glm::dmat3 rgbToCameraMatrix(const Field& field, const CameraSensor& sensor) {
 ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, const CameraModel& camera,
                            const CameraSensor& sensor, const ReferenceSettings& s) {
   if (s.spp < 1) throw InputError("", s.sppKey, std::to_string(s.spp), "a whole number >= 1");
+  const std::string cacheDir = s.fieldKey.empty() ? "" : referenceCacheDir();
+  const std::string key = cacheDir.empty() ? "" : referenceCacheKey(s.fieldKey, fieldToDisplay, camera, sensor, s);
+  if (!key.empty())
+    if (std::optional<ViewResult> cached = loadCachedReference(cacheDir, key)) {
+      cached->cached = true;
+      return std::move(*cached);
+    }
   const bool spectral = field.encoding() == FieldEncoding::Spectral;
   const ApertureMeanWeight meanWeight(camera);
   const CameraRgbFilm film(sensor, spectral ? glm::dmat3(1.0) : rgbToCameraMatrix(field, sensor), meanWeight,
@@ -183,6 +191,7 @@ ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, 
   out.stats.raysPerSample = r.stats.raysPerSample;
   out.stats.dispersive = fs.traceDispersion && camera.isDispersive();
   out.stats.seconds = r.stats.seconds;
+  if (!key.empty()) storeCachedReference(cacheDir, key, out);
   return out;
 }
 

@@ -45,6 +45,7 @@
 //   Image img = renderReference(field, placement.toDisplay(), camera, sensor, s).image;
 //   float z = img.at(x, y, img.channelIndex("Z"));
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "camera/camera_model.h"
@@ -76,6 +77,9 @@ struct ReferenceSettings {
   // the first of the same pixel's full set (0: none, black); see field_render/field_renderer.h.
   const std::vector<uint8_t>* fullSamples = nullptr;
   int sppElsewhere = 1;
+  // The field's content key (fieldContentKey of its file, display_view/reference_cache.h): the
+  // image is then rendered once and read back from the reference cache. "": always rendered.
+  std::string fieldKey;
 };
 
 // `fieldToDisplay`: the placement (Placement::toDisplay()). InputError (key sppKey) for spp < 1

@@ -66,6 +66,7 @@ struct ViewResult {
   Image image;  // R, G, B: linear white-balanced camera RGB, unexposed
   ViewStats stats;
   bool carried = false;  // rendered in another panel's pass (renderViews; stats are the pass's)
+  bool cached = false;   // read from the reference cache (display_view/reference_cache.h; seconds 0)
 };
 
 // The view through `camera` of the display (MLA, panel, active area on the MLA's front plane,

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <future>
 
+#include "display_view/reference_cache.h"
 #include "display/gap_range.h"
 #include "core/error.h"
 #include "core/format.h"
@@ -161,8 +162,9 @@ void applyEstimatorPolicy(ViewSettings& view, const std::string& estimator, bool
 
 std::string summaryText(const ReferenceRunResult& r, const ReferenceSettings& reference, double totalSeconds) {
   char buf[400];
-  std::snprintf(buf, sizeof buf, "rendered:    %d spp, %.2f s render, %.2f s total; %llu rays, %llu hit the scene\n",
-                reference.spp, r.render.stats.seconds, totalSeconds, (unsigned long long)r.render.stats.tracedRays,
+  const std::string render = r.render.cached ? "from the reference cache" : formatNumber(r.render.stats.seconds, "%.2f") + " s render";
+  std::snprintf(buf, sizeof buf, "rendered:    %d spp, %s, %.2f s total; %llu rays, %llu hit the scene\n", reference.spp,
+                render.c_str(), totalSeconds, (unsigned long long)r.render.stats.tracedRays,
                 (unsigned long long)r.render.stats.emittingRays);
   return buf;
 }
@@ -243,7 +245,9 @@ ReferenceRunResult runReference(const ReferenceRunSettings& s,
   const Display d = loadDisplay(displayPathOrDefault(s.displayPath));
   const AreaMm area = computeLayout(d).activeArea();
   if (loaded) loaded(r);
-  r.render = renderReference(*field.field, toDisplay, *r.camera.camera, r.camera.desc.sensor, s.reference);
+  ReferenceSettings rs = s.reference;
+  rs.fieldKey = fieldContentKey(field.path);
+  r.render = renderReference(*field.field, toDisplay, *r.camera.camera, r.camera.desc.sensor, rs);
   r.exposureFactor = writeExposed(r.render.image, r.camera, s.camera.out);
   r.displayInView = displayCoverage(*r.camera.camera, area) > 0.0;
   return r;

@@ -89,6 +89,7 @@ struct Fig11View {
   std::vector<DepthBin> depthBins, depthBinsBandLimited;
   // The view's render (with the budget, its pass also renders the rungs it carries), the reference's.
   double reconstructionSeconds = 0, referenceSeconds = 0;
+  bool referenceCached = false;  // read from the reference cache (display_view/reference_cache.h)
 };
 
 struct Fig11Result {

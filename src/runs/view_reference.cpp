@@ -17,6 +17,7 @@
 #include "synthesis/eia_correction.h"
 #include "synthesis/eia_synthesis.h"
 #include "display_view/reference_renderer.h"
+#include "display_view/reference_cache.h"
 
 namespace fs = std::filesystem;
 
@@ -178,12 +179,14 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
   ref.seed = s.view.seed;
   ref.progress = s.view.progress;
   ref.depth = true;
+  ref.fieldKey = fieldContentKey(in.field.path);
   const PixelMask mask = displayMask(*cs.camera, r.view.layout.activeArea());
   const BandLimit band = bandLimitOf(r.view.layout.lensPitchMm, r.view.display.panel.pixelPitchMm, r.view.gapMm,
                                      cs.pose.distanceMm, *cs.camera);
   ViewResult refRender =
       renderComparedReference(*in.field.field, in.placement.toDisplay(), *cs.camera, cs.desc.sensor, ref, mask, band);
   r.referenceSeconds = refRender.stats.seconds;
+  r.referenceCached = refRender.cached;
   const ReferenceDepth depth = takeDepthChannels(refRender.image);
   const double peak = s.emitter.absolute ? r.view.display.panel.peakLuminanceCdM2 : 1.0;
   const double refToCdM2 = in.eiaExposure * peak;
@@ -235,6 +238,7 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
 std::string comparisonText(const ViewReferenceResult& r) {
   char buf[256];
   std::snprintf(buf, sizeof buf, "%.2f s\n", r.referenceSeconds);
+  if (r.referenceCached) std::snprintf(buf, sizeof buf, "from the reference cache\n");
   std::string text = "reference:   " + r.fieldPath + "; placement " + r.placement.describe() + "; EIA exposure " +
                      formatNumber(r.eiaExposure) + " (" + (r.eiaExposureFromHeader ? "from its header" : "given") +
                      "); " + buf;

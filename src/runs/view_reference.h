@@ -51,6 +51,7 @@ struct ViewReferenceResult {
   ImageMetrics metrics, bandLimitedMetrics;
   std::vector<DepthBin> depthBins;
   double referenceSeconds = 0.0;
+  bool referenceCached = false;  // read from the reference cache (display_view/reference_cache.h)
   std::optional<PoseBudget> budget;
   std::vector<std::string> written;
 };

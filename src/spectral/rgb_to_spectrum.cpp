@@ -17,6 +17,7 @@
 #include <limits>
 #include <random>
 
+#include "core/content_hash.h"
 #include "core/input_file.h"
 #include "spectral/cie.h"
 
@@ -229,21 +230,6 @@ double smoothstep(double x) { return x * x * (3.0 - 2.0 * x); }
 constexpr char kMagic[8] = {'I', 'N', 'I', 'M', 'R', '2', 'S', '1'};
 constexpr uint32_t kFormatVersion = 1;
 
-std::vector<fs::path> cacheDirs() {
-  std::vector<fs::path> dirs;
-  auto env = [](const char* name) -> std::string {
-    const char* v = std::getenv(name);
-    return v && *v ? v : "";
-  };
-  if (auto d = env("INIM_CACHE_DIR"); !d.empty()) dirs.emplace_back(d);
-  if (auto d = env("XDG_CACHE_HOME"); !d.empty()) dirs.push_back(fs::path(d) / "inim");
-  if (auto d = env("HOME"); !d.empty()) dirs.push_back(fs::path(d) / ".cache" / "inim");
-  std::error_code ec;
-  fs::path tmp = fs::temp_directory_path(ec);
-  dirs.push_back((ec ? fs::path("/tmp") : tmp) / "inim-cache");
-  return dirs;
-}
-
 std::string cacheName(int res) { return "rgb2spec_rec709_" + std::to_string(res) + ".bin"; }
 
 }  // namespace
@@ -329,7 +315,7 @@ RGBToSpectrumTable RGBToSpectrumTable::compute(int res) {
 }
 
 std::string RGBToSpectrumTable::cachePath(int res) {
-  return (cacheDirs().front() / cacheName(res)).string();
+  return (fs::path(cacheDirs().front()) / cacheName(res)).string();
 }
 
 bool RGBToSpectrumTable::readCache(const std::string& path, int res) {
@@ -397,7 +383,7 @@ RGBToSpectrumTable RGBToSpectrumTable::loadOrCompute(int res) {
   auto dirs = cacheDirs();
   for (const auto& d : dirs) {
     RGBToSpectrumTable t;
-    if (t.readCache((d / cacheName(res)).string(), res)) return t;
+    if (t.readCache((fs::path(d) / cacheName(res)).string(), res)) return t;
   }
   std::cerr << "inim: optimising the RGB->spectrum table (" << res
             << "^3, once; cached afterwards)..." << std::endl;
@@ -405,8 +391,8 @@ RGBToSpectrumTable RGBToSpectrumTable::loadOrCompute(int res) {
   std::string where;
   for (const auto& d : dirs) {
     try {
-      t.writeCache((d / cacheName(res)).string());
-      where = (d / cacheName(res)).string();
+      where = (fs::path(d) / cacheName(res)).string();
+      t.writeCache(where);
       t.cacheFile_ = where;
       break;
     } catch (const std::exception&) {
