@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench/benchmarks.h"
+#include "core/image.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
 #include "field/field.h"
@@ -46,6 +47,10 @@ void registerTimed(const char* name, void (*fn)(benchmark::State&), bool once, d
 // Peak resident memory of the process so far, MiB.
 double peakRssMiB();
 
+// RMSE of `a` against `ref` over the pixels where the reference has signal, relative to the
+// reference's mean there (view_benchmarks.cpp).
+double relativeRmse(const Image& a, const Image& ref);
+
 // Each family registers its benchmarks; the print functions add their tables after the run.
 void registerQueryBenchmarks(double minTime);
 void registerViewBenchmarks(const ViewBenchSettings& settings);
@@ -58,5 +63,7 @@ void registerSceneBenchmarks();
 void registerMlaBenchmarks(double minTime);
 void registerPlaceBenchmarks(const RadianceBenchSettings& model, double minTime);
 void printFig11BenchResults();
+void registerReferenceBenchmarks();
+void printReferenceBenchResults();
 
 }  // namespace inim::bench

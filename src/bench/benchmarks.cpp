@@ -51,6 +51,7 @@ void runBenchmarks(const BenchSettings& settings) {
   bench::registerRadianceBenchmarks(settings.radiance);
   bench::registerQueryBenchmarks(settings.minTime);
   bench::registerViewBenchmarks(settings.view);
+  bench::registerReferenceBenchmarks();
   bench::registerFig11Benchmarks();
   bench::registerSplatBenchmarks(settings.minTime);
   bench::registerSceneBenchmarks();
@@ -71,6 +72,7 @@ void runBenchmarks(const BenchSettings& settings) {
   printRatios(reporter.raysPerSecond);
   bench::printRadianceBenchResults();
   bench::printViewBenchResults();
+  bench::printReferenceBenchResults();
   bench::printFig11BenchResults();
 }
 

@@ -16,6 +16,12 @@
 //                          reference (noise) and against the point estimator's reference
 //                          (noise + bias), relative to the reference's mean, and the ratio of
 //                          the means
+//   reference/E/spp:N      the reference view of the default scene (real lens, 0 deg, 324 px) at
+//                          N spp with the direct integrator's light sampling E (all-lights: each
+//                          light at every sample, the default scene's; one-light: one picked by
+//                          power); the table after the run gives each one's RMSE against a
+//                          1024-spp reference rendered once (the reference cache) and its
+//                          efficiency, relative MSE x seconds
 //   radiance/eia-query     the default display's EIA from a trained model (when one is given);
 //                          target <= 30 s on 2 cores
 //   place/level0-update/F  the placement page's server: a change of state to its level-0

@@ -72,8 +72,34 @@ void benchView(benchmark::State& state) {
   state.counters["peak_RSS_MiB"] = peakRssMiB();
 }
 
-// RMSE of `a` against `ref` over the pixels where the reference has signal, relative to the
-// reference's mean there.
+double meanOf(const Image& img) {
+  double m = 0.0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c) m += img.at(x, y, c);
+  return m / (3.0 * img.width * img.height);
+}
+
+void printEstimatorRows(ViewContext& v, PanelEstimator e, const Image& ref, const Image* pointRef) {
+  const int refSpp = v.settings.referenceSpp;
+  const std::pair<int, int> refKey(-1 - int(e), refSpp);
+  auto row = [&](int spp, const Image& img, double sec, double rss) {
+    const double vsPoint = pointRef ? 100.0 * relativeRmse(img, *pointRef) : NAN;
+    const double ratio = pointRef ? meanOf(img) / meanOf(*pointRef) : NAN;
+    // Error x time: the relative MSE against the point reference (noise and bias) x seconds.
+    const double cost = pointRef ? std::pow(vsPoint / 100.0, 2) * sec : NAN;
+    std::printf("  %-10s %6d %10.2f %11.2f%% %13.2f%% %12.3e %12.4f %14.0f\n", panelEstimatorName(e), spp, sec,
+                100.0 * relativeRmse(img, ref), vsPoint, cost, ratio, rss);
+  };
+  for (int spp : v.settings.spps) {
+    const std::pair<int, int> key(int(e), spp);
+    if (v.images.count(key)) row(spp, v.images[key], v.seconds[key], v.rssMiB[key]);
+  }
+  row(refSpp, ref, v.seconds[refKey], v.rssMiB[refKey]);
+}
+
+}  // namespace
+
 double relativeRmse(const Image& a, const Image& ref) {
   double se = 0, sum = 0;
   size_t n = 0;
@@ -90,32 +116,6 @@ double relativeRmse(const Image& a, const Image& ref) {
     }
   return n && sum > 0 ? std::sqrt(se / double(n)) / (sum / double(n)) : 0.0;
 }
-
-double meanOf(const Image& img) {
-  double m = 0.0;
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x)
-      for (int c = 0; c < 3; ++c) m += img.at(x, y, c);
-  return m / (3.0 * img.width * img.height);
-}
-
-void printEstimatorRows(ViewContext& v, PanelEstimator e, const Image& ref, const Image* pointRef) {
-  const int refSpp = v.settings.referenceSpp;
-  const std::pair<int, int> refKey(-1 - int(e), refSpp);
-  auto row = [&](int spp, const Image& img, double sec, double rss) {
-    const double vsPoint = pointRef ? 100.0 * relativeRmse(img, *pointRef) : NAN;
-    const double ratio = pointRef ? meanOf(img) / meanOf(*pointRef) : NAN;
-    std::printf("  %-10s %6d %10.2f %11.2f%% %13.2f%% %12.4f %14.0f\n", panelEstimatorName(e), spp, sec,
-                100.0 * relativeRmse(img, ref), vsPoint, ratio, rss);
-  };
-  for (int spp : v.settings.spps) {
-    const std::pair<int, int> key(int(e), spp);
-    if (v.images.count(key)) row(spp, v.images[key], v.seconds[key], v.rssMiB[key]);
-  }
-  row(refSpp, ref, v.seconds[refKey], v.rssMiB[refKey]);
-}
-
-}  // namespace
 
 void registerViewBenchmarks(const ViewBenchSettings& settings) {
   ViewContext& v = viewContext();
@@ -146,9 +146,10 @@ void printViewBenchResults() {
     if (!header) {
       std::printf("\nview (real MLA, real lens, 0 deg) at %d x %d: time, RMSE relative to the mean against the same "
                   "estimator at %d spp (own ref) and against the point estimator at %d spp (point ref), mean / "
-                  "point ref's mean\n", ref.width, ref.height, refSpp, refSpp);
-      std::printf("  %-10s %6s %10s %12s %14s %12s %14s\n", "estimator", "spp", "seconds", "RMSE own ref",
-                  "RMSE point ref", "mean ratio", "peak RSS MiB");
+                  "point ref's mean, efficiency = relative MSE against the point ref x seconds (lower is better)\n",
+                  ref.width, ref.height, refSpp, refSpp);
+      std::printf("  %-10s %6s %10s %12s %14s %12s %12s %14s\n", "estimator", "spp", "seconds", "RMSE own ref",
+                  "RMSE point ref", "MSE x s", "mean ratio", "peak RSS MiB");
       header = true;
     }
     printEstimatorRows(v, e, ref, pointRef);
