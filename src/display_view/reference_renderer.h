@@ -66,6 +66,8 @@ const char* cameraDispersionName(CameraDispersion d);  // "auto", "trace", "igno
 constexpr double kDispersionThresholdPx = 0.25;
 
 struct ReferenceSettings {
+  // 16: at 648 px the default scene's noise floor (CIEDE2000 between two seeds, 0°, within the
+  // display) is 2.0; 8 gave 3.45 (docs/error-budget.md). Also fig11's and view --reference's.
   int spp = 16;
   const char* sppKey = "spp";  // the setting spp came from, named when it is refused
   CameraDispersion dispersion = CameraDispersion::Auto;

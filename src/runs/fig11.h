@@ -30,6 +30,7 @@
 #include "field/placement.h"
 #include "display_view/display_model.h"
 #include "display_view/display_pose.h"
+#include "display_view/reference_renderer.h"
 
 namespace inim {
 
@@ -51,7 +52,7 @@ struct Fig11Settings {
   // also the budget's, so the budget's full chain is this view (budgetSpp).
   int spp = 1;            // strata per pixel of the reconstructed views (ViewSettings' estimator)
   int apertureGrid = 8;   // ViewSettings::apertureGrid
-  int referenceSpp = 8;   // samples per pixel of the reference views
+  int referenceSpp = ReferenceSettings{}.spp;  // samples per pixel of the reference views
   // Field samples per display ray of the EIA. 2 with the default scene's every-light sampling
   // gives the EIA the same noise (RMSE between seeds 37 % per EIA pixel) as 4 picking one light
   // per sample, in the same time.

@@ -22,6 +22,7 @@
 
 #include "analysis/depth_error.h"
 #include "analysis/metrics.h"
+#include "display_view/reference_renderer.h"
 #include "runs/camera_run.h"
 #include "runs/error_budget.h"
 #include "field/placement.h"
@@ -33,7 +34,7 @@ struct ViewReferenceSettings {
   std::optional<Placement> placement;   // a run file's; absent: the field's own
   PlacementOverride placementOverride;  // given one by one, over that
   std::optional<double> eiaExposure;    // default: the EIA's header (kEiaExposureHeader)
-  int referenceSpp = 8;                 // samples per pixel of each reference
+  int referenceSpp = ReferenceSettings{}.spp;  // samples per pixel of each reference
   bool budget = true;
   std::vector<std::string> budgetRungs;  // empty: all (budgetRungs())
   std::string budgetCalibrationPath;     // the "+ calibration" rung's correction; "": skipped
