@@ -94,6 +94,8 @@ LensSystem::LensSystem(std::vector<LensSurface> surfaces, std::string name, std:
 
 void LensSystem::rebuild() {
   z_.assign(surfaces_.size(), 0.0);
+  curvature_.resize(surfaces_.size());
+  for (size_t i = 0; i < surfaces_.size(); ++i) curvature_[i] = surfaces_[i].curvature();
   stop_ = -1;
   for (size_t i = 0; i < surfaces_.size(); ++i) {
     if (i > 0) z_[i] = z_[i - 1] + surfaces_[i - 1].thicknessMm;
@@ -160,7 +162,7 @@ TraceResult LensSystem::traceWithIndices(LensRay& r, const double* nAfter, Trace
   for (int step = 0; step <= last - first; ++step) {
     const int i = forward ? first + step : last - step;
     const LensSurface& s = surfaces_[size_t(i)];
-    const double c = s.curvature();
+    const double c = curvature_[size_t(i)];
     const Vec3d oLocal(r.o.x, r.o.y, r.o.z - z_[size_t(i)]);
     const double t = intersectConic(oLocal, r.d, c, s.conic, kTMin);
     if (t < kTMin) {

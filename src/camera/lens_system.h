@@ -135,6 +135,7 @@ class LensSystem {
                          const std::string& expected) const;
   std::vector<LensSurface> surfaces_;
   std::vector<double> z_;  // vertex positions
+  std::vector<double> curvature_;  // LensSurface::curvature(), once: a division per surface and ray
   std::string name_, file_;
   int stop_ = -1;
   double sensorDistance_ = 0.0;
