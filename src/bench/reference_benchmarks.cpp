@@ -53,9 +53,11 @@ ReferenceContext& builtReferenceContext() {
   co.width = kWidth;
   c.camera = makeViewCamera(c.desc, pose, co);
   for (size_t e = 0; e < std::size(kEstimators); ++e) {
-    IntegratorSettings is = AnalyticScene::load(defaultScenePath())->integratorSettings();
+    std::unique_ptr<AnalyticScene> scene = AnalyticScene::load(defaultScenePath());
+    IntegratorSettings is = scene->integratorSettings();
     is.lightSelection = kEstimators[e].selection;
-    c.scenes[int(e)] = AnalyticScene::load(defaultScenePath(), is);
+    scene->setIntegratorSettings(is);
+    c.scenes[int(e)] = std::move(scene);
   }
   // The default scene's own estimator, many samples, another seed; once per build of inim.
   ReferenceSettings rs;

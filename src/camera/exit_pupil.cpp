@@ -100,16 +100,17 @@ ExitPupilBounds::ExitPupilBounds(const LensSystem& lens, double rMaxMm, const Se
   });
 }
 
+size_t ExitPupilBounds::binOf(double r) const {
+  return size_t(std::clamp(int(r / rMax_ * double(boxes_.size())), 0, int(boxes_.size()) - 1));
+}
+
 const PupilBox& ExitPupilBounds::box(double r) const {
-  int bin = int(r / rMax_ * double(boxes_.size()));
-  bin = std::clamp(bin, 0, int(boxes_.size()) - 1);
-  return boxes_[size_t(bin)];
+  return boxes_[binOf(r)];
 }
 
 bool ExitPupilBounds::sample(const Vec2d& s, const Vec2& u, Point3d& rearPoint, double& pdfArea) const {
   const double r = std::sqrt(s.x * s.x + s.y * s.y);
-  const int bin = std::clamp(int(r / rMax_ * double(sampling_.size())), 0, int(sampling_.size()) - 1);
-  const PupilBox& b = sampling_[size_t(bin)];
+  const PupilBox& b = sampling_[binOf(r)];
   if (b.empty) {
     pdfArea = 0.0;
     return false;

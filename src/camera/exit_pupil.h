@@ -58,6 +58,7 @@ class ExitPupilBounds {
   double windowHalfWidth() const { return window_; }
 
  private:
+  size_t binOf(double r) const;  // the bin of sensor radius r (both tables have one per bin)
   PupilBox scanBin(const LensSystem& lens, const std::vector<std::vector<double>>& indices, int bin, int nBins, int nR,
                    int grid, const Vec2d& lo, const Vec2d& hi, std::vector<Vec2d>& passing) const;
   std::vector<PupilBox> boxes_;

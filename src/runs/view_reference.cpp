@@ -236,13 +236,13 @@ ViewReferenceResult runViewWithReference(const ViewRunSettings& s, const ViewRef
 }
 
 std::string comparisonText(const ViewReferenceResult& r) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%.2f s\n", r.referenceSeconds);
-  if (r.referenceCached) std::snprintf(buf, sizeof buf, "from the reference cache\n");
+  const std::string seconds = r.referenceCached ? "from the reference cache\n"
+                                                : formatNumber(r.referenceSeconds, "%.2f") + " s\n";
   std::string text = "reference:   " + r.fieldPath + "; placement " + r.placement.describe() + "; EIA exposure " +
                      formatNumber(r.eiaExposure) + " (" + (r.eiaExposureFromHeader ? "from its header" : "given") +
-                     "); " + buf;
+                     "); " + seconds;
   if (!r.hasMetrics) return text;
+  char buf[256];
   for (const auto& [what, m] : {std::pair{"against:     reference", &r.metrics},
                                 {"             band-limited", &r.bandLimitedMetrics}}) {
     std::snprintf(buf, sizeof buf, "%s: PSNR %s dB, SSIM %.4f, CIEDE2000 mean %.3f, p95 %.3f\n", what,

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
+#include <utility>
 
 #include "core/parallel.h"
 #include "core/rng.h"
@@ -60,6 +62,21 @@ class TestField final : public Field {
   double r_;
   bool sky_;
 };
+
+// The field's reference through the default camera (of `kind`, `width` px) at seeds 1 and 2.
+std::pair<Image, Image> twoSeeds(const Field& field, int width, int spp,
+                                 std::optional<CameraModelKind> kind = std::nullopt) {
+  ViewCameraOptions co;
+  co.width = width;
+  co.kind = kind;
+  const auto cam = makeViewCamera(defaultCamera(), DisplayPose{}, co);
+  ReferenceSettings s;
+  s.spp = spp;
+  s.progress = false;
+  Image one = renderReference(field, Transform(), *cam, defaultCamera().sensor, s).image;
+  s.seed = 2;
+  return {std::move(one), renderReference(field, Transform(), *cam, defaultCamera().sensor, s).image};
+}
 
 Vec2d centroid(const Image& img) {
   double sx = 0, sy = 0, sw = 0;
@@ -225,12 +242,7 @@ TEST(ReferenceRenderer, VignettedLensSamplesAddNoGrain) {
   co.width = 24;
   const auto cam = makeViewCamera(defaultCamera(), DisplayPose{}, co);
   const RgbFurnace furnace;
-  ReferenceSettings s;
-  s.spp = 4;
-  s.progress = false;
-  const Image one = renderReference(furnace, Transform(), *cam, defaultCamera().sensor, s).image;
-  s.seed = 2;
-  const Image two = renderReference(furnace, Transform(), *cam, defaultCamera().sensor, s).image;
+  const auto [one, two] = twoSeeds(furnace, 24, 4);
   double worst = 0.0;
   int counted = 0;
   for (size_t i = 0; i < one.data.size(); ++i) {
@@ -263,16 +275,7 @@ TEST(ReferenceRenderer, VignettedLensSamplesAddNoGrain) {
 TEST(ReferenceRenderer, VignettedLensSamplesKeepTheWavelengthStrata) {
   TestField sky(Vec3d(0.0), 1.0, true);
   auto chromaNoise = [&](CameraModelKind kind) {
-    ViewCameraOptions co;
-    co.width = 32;
-    co.kind = kind;
-    const auto cam = makeViewCamera(defaultCamera(), DisplayPose{}, co);
-    ReferenceSettings s;
-    s.spp = 8;
-    s.progress = false;
-    const Image one = renderReference(sky, Transform(), *cam, defaultCamera().sensor, s).image;
-    s.seed = 2;
-    const Image two = renderReference(sky, Transform(), *cam, defaultCamera().sensor, s).image;
+    const auto [one, two] = twoSeeds(sky, 32, 8, kind);
     // The rms difference of the chromaticity r / (r + g + b) between the seeds.
     double sum = 0.0;
     int n = 0;
