@@ -1,12 +1,19 @@
 #include "display_view/reference_cache.h"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <thread>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
 #include "core/content_hash.h"
+#include "core/interrupt.h"
 #include "core/image.h"
 #include "core/json_config.h"
 #include "core/output_file.h"
@@ -17,7 +24,7 @@ namespace inim {
 
 namespace {
 
-constexpr const char* kCacheFormat = "inim reference cache 1";
+constexpr const char* kCacheFormat = "inim reference cache 2";
 
 // Every string in a JSON document, depth first.
 void collectStrings(const Json& j, std::vector<std::string>& out) {
@@ -64,6 +71,14 @@ void addSensor(Sha256& h, const CameraSensor& sensor) {
   for (int nm = 360; nm <= 830; ++nm) h.addValue(sensor.response(double(nm)));
   h.addValue(sensor.xyzToCameraRgb());
 }
+
+std::string thisHost() {
+  char host[256] = {};
+  gethostname(host, sizeof host - 1);
+  return host;
+}
+
+std::string temporaryTag() { return ".tmp-" + thisHost() + "-" + std::to_string(getpid()); }
 
 std::string entryPath(const std::string& dir, const std::string& key, const char* ext) {
   return (fs::path(dir) / (key + ext)).string();
@@ -120,6 +135,7 @@ std::optional<ViewResult> loadCachedReference(const std::string& dir, const std:
     r.image = readImage(exr);
     const Json j = readJsonFile(json);
     if (j.at("format").get<std::string>() != kCacheFormat || j.at("key").get<std::string>() != key) return std::nullopt;
+    if (j.at("exr_sha256").get<std::string>() != fileSha256(exr)) return std::nullopt;  // verified, not assumed
     r.stats.tracedRays = j.at("traced_rays").get<uint64_t>();
     r.stats.emittingRays = j.at("hit_rays").get<uint64_t>();
     r.stats.raysPerSample = j.at("rays_per_sample").get<int>();
@@ -134,11 +150,13 @@ std::optional<ViewResult> loadCachedReference(const std::string& dir, const std:
 void storeCachedReference(const std::string& dir, const std::string& key, const ViewResult& r) {
   try {
     fs::create_directories(dir);
-    // Temporaries keep their extension: the image writer picks the format by it.
-    const std::string tag = ".tmp" + std::to_string(getpid());
+    // Temporaries keep their extension: the image writer picks the format by it. Tagged by host
+    // and process: array tasks on several nodes may write one entry to a shared file system.
+    const std::string tag = temporaryTag();
     const std::string exr = entryPath(dir, key, ".exr"), json = entryPath(dir, key, ".json");
     const std::string exrTmp = entryPath(dir, key + tag, ".exr"), jsonTmp = entryPath(dir, key + tag, ".json");
-    const Json j{{"format", kCacheFormat},       {"key", key},
+    writeImage(r.image, exrTmp);
+    const Json j{{"format", kCacheFormat},       {"key", key}, {"exr_sha256", fileSha256(exrTmp)},
                  {"traced_rays", r.stats.tracedRays}, {"hit_rays", r.stats.emittingRays},
                  {"rays_per_sample", r.stats.raysPerSample}, {"dispersive", r.stats.dispersive},
                  {"render_seconds", r.stats.seconds}};
@@ -147,13 +165,70 @@ void storeCachedReference(const std::string& dir, const std::string& key, const 
       out << j.dump(2) << "\n";
       if (!out) throw std::runtime_error("write");
     }
-    writeImage(r.image, exrTmp);
     fs::rename(jsonTmp, json);
     fs::rename(exrTmp, exr);  // the image last: its presence marks a whole entry
   } catch (const std::exception&) {
     // A full disk or a read-only cache: the run goes on without the entry.
     std::error_code ec;
-    for (const char* ext : {".exr", ".json"}) fs::remove(entryPath(dir, key + ".tmp" + std::to_string(getpid()), ext), ec);
+    for (const char* ext : {".exr", ".json"}) fs::remove(entryPath(dir, key + temporaryTag(), ext), ec);
+  }
+}
+
+ReferenceClaim& ReferenceClaim::operator=(ReferenceClaim&& o) noexcept {
+  if (this != &o) {
+    ReferenceClaim old(std::move(*this));
+    lock_ = std::exchange(o.lock_, {});
+  }
+  return *this;
+}
+
+ReferenceClaim::~ReferenceClaim() {
+  std::error_code ec;
+  if (!lock_.empty()) fs::remove(lock_, ec);
+}
+
+namespace {
+
+// A claim nobody will finish: its process is gone (on this host), or it is older than `staleSeconds`.
+bool staleClaim(const std::string& lock, double staleSeconds) {
+  std::ifstream in(lock);
+  std::string host;
+  long pid = 0;
+  if (in >> host >> pid && host == thisHost() && pid > 0 && kill(pid_t(pid), 0) != 0 && errno == ESRCH) return true;
+  std::error_code ec;
+  const auto written = fs::last_write_time(lock, ec);
+  if (ec) return false;  // gone meanwhile: the next try sees
+  const double age = std::chrono::duration<double>(fs::file_time_type::clock::now() - written).count();
+  return age > staleSeconds;
+}
+
+}  // namespace
+
+std::optional<ViewResult> loadOrClaimReference(const std::string& dir, const std::string& key, ReferenceClaim& claim,
+                                               double staleSeconds) {
+  const std::string lock = entryPath(dir, key, ".lock");
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  for (;;) {
+    if (std::optional<ViewResult> cached = loadCachedReference(dir, key)) return cached;
+    const int fd = open(lock.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (fd >= 0) {
+      const std::string owner = thisHost() + " " + std::to_string(getpid()) + "\n";
+      const bool written = write(fd, owner.data(), owner.size()) == ssize_t(owner.size());
+      close(fd);
+      (void)written;  // an unreadable claim is still a claim; it goes stale by age
+      claim = ReferenceClaim(lock);
+      // Rendered by the run that just let its claim go: read it, not render it again.
+      if (std::optional<ViewResult> cached = loadCachedReference(dir, key)) return cached;
+      return std::nullopt;
+    }
+    if (errno != EEXIST) return std::nullopt;  // a read-only cache: render without a claim
+    if (staleClaim(lock, staleSeconds)) {
+      fs::remove(lock, ec);
+      continue;
+    }
+    throwIfInterrupted();
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
 }
 

@@ -12,10 +12,14 @@
 // (float EXR), with the same ray counts.
 //
 // Where: references/ in inim's cache folder (core/content_hash.h: $INIM_CACHE_DIR, else
-// $XDG_CACHE_HOME/inim, else ~/.cache/inim); INIM_REFERENCE_CACHE=0 turns it off. Entries are written to a temporary and renamed, so
-// concurrent runs never read half an entry; a damaged entry is rendered again.
+// $XDG_CACHE_HOME/inim, else ~/.cache/inim), or the folder a run names (ReferenceSettings::cacheDir,
+// a sweep's); INIM_REFERENCE_CACHE=0 turns the default one off. Entries are written to temporaries
+// tagged by host and process and renamed, so concurrent runs, on one machine or on the nodes of
+// a cluster sharing a file system, never read half an entry. The image's SHA-256 is stored with it
+// and checked on every read: a damaged or mismatched entry is rendered again.
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "camera/camera_model.h"
 #include "camera/sensor.h"
@@ -35,6 +39,27 @@ std::string referenceCacheKey(const std::string& fieldKey, const Transform& fiel
                               const CameraSensor& sensor, const ReferenceSettings& s);
 
 std::optional<ViewResult> loadCachedReference(const std::string& dir, const std::string& key);
+
+// The right to render one entry, held by one run at a time (a KEY.lock file naming its host and
+// process, removed when the claim ends), so that concurrent runs, a sweep's points or its array
+// tasks on a shared file system, wait for an entry instead of rendering it too.
+class ReferenceClaim {
+ public:
+  ReferenceClaim() = default;
+  explicit ReferenceClaim(std::string lockPath) : lock_(std::move(lockPath)) {}
+  ReferenceClaim(ReferenceClaim&& o) noexcept : lock_(std::exchange(o.lock_, {})) {}
+  ReferenceClaim& operator=(ReferenceClaim&& o) noexcept;
+  ~ReferenceClaim();
+  bool held() const { return !lock_.empty(); }
+
+ private:
+  std::string lock_;
+};
+// The entry when it is cached, waiting while another live run holds its claim; else none, with
+// the claim taken (`claim`). A claim of a process gone (on this host), or older than
+// `staleSeconds`, is taken over. Throws Interrupted (core/interrupt.h) while it waits.
+std::optional<ViewResult> loadOrClaimReference(const std::string& dir, const std::string& key, ReferenceClaim& claim,
+                                               double staleSeconds = 3600.0);
 // Failures to write are not errors: the run goes on without the entry.
 void storeCachedReference(const std::string& dir, const std::string& key, const ViewResult& r);
 

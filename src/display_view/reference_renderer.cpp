@@ -157,10 +157,11 @@ glm::dmat3 rgbToCameraMatrix(const Field& field, const CameraSensor& sensor) {
 ViewResult renderReference(const Field& field, const Transform& fieldToDisplay, const CameraModel& camera,
                            const CameraSensor& sensor, const ReferenceSettings& s) {
   if (s.spp < 1) throw InputError("", s.sppKey, std::to_string(s.spp), "a whole number >= 1");
-  const std::string cacheDir = s.fieldKey.empty() ? "" : referenceCacheDir();
+  const std::string cacheDir = s.fieldKey.empty() ? "" : !s.cacheDir.empty() ? s.cacheDir : referenceCacheDir();
   const std::string key = cacheDir.empty() ? "" : referenceCacheKey(s.fieldKey, fieldToDisplay, camera, sensor, s);
+  ReferenceClaim claim;  // held while this run renders the entry: concurrent runs wait for it
   if (!key.empty())
-    if (std::optional<ViewResult> cached = loadCachedReference(cacheDir, key)) {
+    if (std::optional<ViewResult> cached = loadOrClaimReference(cacheDir, key, claim)) {
       cached->cached = true;
       return std::move(*cached);
     }

@@ -82,6 +82,9 @@ struct ReferenceSettings {
   // The field's content key (fieldContentKey of its file, display_view/reference_cache.h): the
   // image is then rendered once and read back from the reference cache. "": always rendered.
   std::string fieldKey;
+  // The cache's folder; "": referenceCacheDir() (off when INIM_REFERENCE_CACHE=0). A sweep gives
+  // its own, shared by its points (on a cluster, on the shared file system).
+  std::string cacheDir;
 };
 
 // `fieldToDisplay`: the placement (Placement::toDisplay()). InputError (key sppKey) for spp < 1

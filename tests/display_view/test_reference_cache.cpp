@@ -1,7 +1,8 @@
 // The reference cache (display_view/reference_cache.h): a second render of the same inputs is
 // read back bit for bit with the same ray counts; any input that changes the image changes the
 // key; a damaged entry is rendered again; INIM_REFERENCE_CACHE=0 turns the cache off; a
-// scene's key follows the files it names.
+// scene's key follows the files it names; an entry is verified by its hash on read; concurrent
+// runs wait for a claimed entry instead of rendering it twice.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -9,6 +10,9 @@
 #include <fstream>
 #include <functional>
 #include <optional>
+#include <thread>
+
+#include <unistd.h>
 
 #include "core/rng.h"
 #include "display_view/reference_cache.h"
@@ -155,6 +159,70 @@ TEST(ReferenceCache, ADamagedEntryIsRenderedAgainAndTheCacheTurnsOff) {
   EnvVar off("INIM_REFERENCE_CACHE", "0");
   EXPECT_EQ(referenceCacheDir(), "");
   EXPECT_FALSE(renderReference(sky, Transform(), *cam, defaultCamera().sensor, settings("sky")).cached);
+}
+
+// A readable image that is not the entry's (another entry's, copied over it) fails the stored
+// SHA-256 and is rendered again; a folder given to the run is used even with the default cache off.
+TEST(ReferenceCache, AnEntryIsVerifiedOnReadAndARunMayNameItsFolder) {
+  ScratchDir scratch("reference_cache_verified");
+  EnvVar off("INIM_REFERENCE_CACHE", "0");
+  auto cam = pinholeCamera(ViewingPose{}, 12, 8, 0.01, 10.0);
+  const SkyField sky;
+  ReferenceSettings a = settings("sky"), b = settings("sky");
+  a.cacheDir = b.cacheDir = (scratch.dir() / "references").string();
+  b.seed = 2;
+  const ViewResult first = renderReference(sky, Transform(), *cam, defaultCamera().sensor, a);
+  const ViewResult other = renderReference(sky, Transform(), *cam, defaultCamera().sensor, b);
+  ASSERT_EQ(entries(scratch.dir()), 2u);
+  ASSERT_NE(first.image.data, other.image.data);
+  const std::string keyA = referenceCacheKey("sky", Transform(), *cam, defaultCamera().sensor, a);
+  const std::string keyB = referenceCacheKey("sky", Transform(), *cam, defaultCamera().sensor, b);
+  const auto dir = scratch.dir() / "references";
+  std::filesystem::copy_file(dir / (keyB + ".exr"), dir / (keyA + ".exr"),
+                             std::filesystem::copy_options::overwrite_existing);
+  const ViewResult again = renderReference(sky, Transform(), *cam, defaultCamera().sensor, a);
+  EXPECT_FALSE(again.cached);
+  EXPECT_EQ(again.image.data, first.image.data);
+  EXPECT_TRUE(renderReference(sky, Transform(), *cam, defaultCamera().sensor, a).cached);
+}
+
+// A run that finds another live run's claim waits for its entry and reads it instead of
+// rendering it too; a claim whose process is gone is taken over.
+TEST(ReferenceCache, ConcurrentRunsWaitForTheClaimedEntry) {
+  ScratchDir scratch("reference_cache_claim");
+  auto cam = pinholeCamera(ViewingPose{}, 12, 8, 0.01, 10.0);
+  const SkyField sky;
+  ReferenceSettings s = settings("sky");
+  s.cacheDir = (scratch.dir() / "references").string();
+  const std::string key = referenceCacheKey("sky", Transform(), *cam, defaultCamera().sensor, s);
+  ReferenceClaim held;
+  ASSERT_FALSE(loadOrClaimReference(s.cacheDir, key, held));
+  ASSERT_TRUE(held.held());
+  ViewResult waited;
+  std::thread other([&] { waited = renderReference(sky, Transform(), *cam, defaultCamera().sensor, s); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  // The holder renders (without the cache) and stores the entry, then lets the claim go.
+  ReferenceSettings plain = s;
+  plain.fieldKey = "";
+  const ViewResult rendered = renderReference(sky, Transform(), *cam, defaultCamera().sensor, plain);
+  storeCachedReference(s.cacheDir, key, rendered);
+  held = ReferenceClaim();
+  other.join();
+  EXPECT_TRUE(waited.cached);
+  EXPECT_EQ(waited.image.data, rendered.image.data);
+  EXPECT_FALSE(std::filesystem::exists(s.cacheDir + "/" + key + ".lock"));
+
+  // A claim left by a process that is gone: taken over at once.
+  ReferenceSettings b = s;
+  b.seed = 7;
+  const std::string keyB = referenceCacheKey("sky", Transform(), *cam, defaultCamera().sensor, b);
+  char host[256] = {};
+  gethostname(host, sizeof host - 1);
+  std::ofstream(s.cacheDir + "/" + keyB + ".lock") << host << " 999999999\n";
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_FALSE(renderReference(sky, Transform(), *cam, defaultCamera().sensor, b).cached);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+  EXPECT_FALSE(std::filesystem::exists(s.cacheDir + "/" + keyB + ".lock"));
 }
 
 TEST(ReferenceCache, ASceneKeyFollowsTheFilesItNames) {
