@@ -155,8 +155,8 @@ class Fig11Run {
     r.mask = displayMask(*r.camera, dm_.area);
     ReferenceSettings rs = referenceSettings(s_.seed);
     rs.depth = s_.depthError;
-    r.ref = renderComparedReference(*in_.field.field, in_.fieldToDisplay, *r.camera, in_.camera.sensor, rs, r.mask,
-                                    bandLimitOf(*r.camera));
+    r.ref = renderComparedReference(*in_.field.field, in_.fieldToDisplay, *r.camera, in_.camera.sensor, rs,
+                                    s_.referenceEveryPixel ? PixelMask{} : r.mask, bandLimitOf(*r.camera));
     r.refDepth = takeDepthChannels(r.ref.image);  // the reference images stay RGB
     v.referenceSeconds = r.ref.stats.seconds;
     v.referenceCached = r.ref.cached;
@@ -197,7 +197,8 @@ class Fig11Run {
     rs.spp = s_.referenceSpp;
     rs.sppKey = "reference_spp";
     rs.seed = seed;
-    rs.fieldKey = in_.fieldKey;
+    rs.fieldKey = s_.referenceCache ? in_.fieldKey : "";
+    rs.cacheDir = s_.referenceCacheDir;
     return rs;
   }
 
@@ -257,8 +258,10 @@ class Fig11Run {
     const PixelMask& mask = r.mask;
     ReferenceSettings rs = referenceSettings(s_.seed + 1);
     rs.progress = false;
-    rs.fullSamples = &mask.on;  // the floor is measured on the mask only
-    rs.sppElsewhere = 0;
+    if (!s_.referenceEveryPixel) {
+      rs.fullSamples = &mask.on;  // the floor is measured on the mask only
+      rs.sppElsewhere = 0;
+    }
     const Image second = renderReference(*in_.field.field, in_.fieldToDisplay, camera, in_.camera.sensor, rs).image;
     const Image secondExposed = scaledImage(second, refToCdM2_ * img.exposure);
     std::vector<MadeRungView> made;

@@ -75,6 +75,15 @@ struct Fig11Settings {
   // (centre, left, right, top, bottom; empty: all five).
   std::optional<Display> display;
   std::vector<std::string> poses;
+  // The reference cache's folder (ReferenceSettings::cacheDir); "": the user's. Without
+  // referenceCache, references are always rendered.
+  std::string referenceCacheDir;
+  bool referenceCache = true;
+  // The references in full at every pixel, not only where the display is seen (its pixels get
+  // the same samples either way, so the metrics are the same): they then depend on the scene,
+  // placement, camera and pose only, and the points of a sweep that change the display's optics
+  // or size share them through the cache. Off: pixels away from the display get one sample.
+  bool referenceEveryPixel = false;
 };
 
 struct Fig11View {
