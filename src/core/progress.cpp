@@ -29,6 +29,12 @@ void ProgressBar::add(uint64_t n) {
   draw(done, false);
 }
 
+void ProgressBar::setNote(std::string note) {
+  std::lock_guard<std::mutex> lock(drawMutex_);
+  note_ = std::move(note);
+  if (enabled_ && !finished_) draw(done_.load(), false);
+}
+
 void ProgressBar::finish() {
   std::lock_guard<std::mutex> lock(drawMutex_);
   if (finished_ || !enabled_) {
@@ -47,8 +53,8 @@ void ProgressBar::draw(uint64_t done, bool final) {
   std::string bar(filled, '#');
   bar.resize(kWidth, '.');
   double eta = frac > 0.0 ? secs * (1.0 - frac) / frac : 0.0;
-  std::fprintf(stderr, "\r%s [%s] %5.1f%%  %.1fs elapsed, %.1fs left ", label_.c_str(), bar.c_str(),
-               100.0 * frac, secs, final ? 0.0 : eta);
+  std::fprintf(stderr, "\r%s [%s] %5.1f%%  %.1fs elapsed, %.1fs left %s", label_.c_str(), bar.c_str(),
+               100.0 * frac, secs, final ? 0.0 : eta, note_.empty() ? "" : ("  " + note_ + " ").c_str());
   if (final) std::fputc('\n', stderr);
   std::fflush(stderr);
 }

@@ -20,6 +20,8 @@ class ProgressBar {
   ~ProgressBar();
   void add(uint64_t n);  // thread safe; throws Interrupted after SIGINT/SIGTERM (core/interrupt.h)
   void finish();
+  // Text shown after the bar ("3 done, 1 failed"); thread safe.
+  void setNote(std::string note);
   static bool stderrIsTerminal();
 
  private:
@@ -32,6 +34,7 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
   std::mutex drawMutex_;
   bool finished_ = false;
+  std::string note_;
 };
 
 }  // namespace inim
