@@ -42,5 +42,6 @@ void addEvalCommand(CLI::App& cmd);
 void addCompareCommand(CLI::App& cmd);
 void addLensCommand(CLI::App& cmd);
 void addBenchCommand(CLI::App& cmd);
+void addSweepCommand(CLI::App& cmd);
 
 }  // namespace inim::cli

@@ -343,6 +343,26 @@ std::vector<SettingInfo> otherCommandSettings() {
       text("field_translate_mm", "", "Its placement translation, mm"),
       text("lego", "", "Lego dataset folder for radiance/train-lego (e.g. ../shared/data/lego)"),
       number("lego_iterations", "", 1, 1e8, "Training iterations of radiance/train-lego"),
+      // sweep
+      text("plan", "", "The sweep's plan (JSON: a base design and the axes to vary; docs/sweeps.md)"),
+      text("out", "sweep", "The sweep's folder: plan.json, points/ID/, references/, results.csv/.json, plots/, report.md"),
+      number("jobs", "", 1, 4096, "Points run at once, each its own process"),
+      number("threads_per_point", "", 0, 4096, "Worker threads of each point (0: the machine's threads / --jobs)"),
+      number("max_points", "", 1, 1e9, "Refuse a plan that makes more points than this"),
+      text("slurm", "", "Write a Slurm job array for the points not complete, and its collection step (DIR/slurm/)"),
+      text("submit", "", "With --slurm: submit both with sbatch and print the job ids"),
+      text("partition", "", "With --slurm: the partition (default: the cluster's)"),
+      number("cpus_per_task", "", 1, 4096, "With --slurm: CPUs of each array task (its points' threads)"),
+      text("mem", "", "With --slurm: memory of each array task, as sbatch --mem takes it"),
+      text("time_limit", "", "With --slurm: time limit of each array task, as sbatch --time takes it"),
+      number("points_per_task", "", 1, 1e6, "With --slurm: points run one after another by each array task"),
+      text("point", "", "Run this point of the sweep in --out alone (its id, as point.json and the report give it)"),
+      text("collect", "", "Gather the points' results of the sweep in --out: results.csv/.json, plots, report.md"),
+      text("slurm_task", "", "A Slurm array task's list of points (DIR/slurm/tasks-N.txt; the array script gives it)"),
+      text("reference_cache", "",
+           "The points' reference cache: a folder (on a cluster, on the shared file system), or off (default: "
+           "DIR/references)"),
+      number("task_index", "", 0, 1e9, "With --slurm-task: the array task's index ($SLURM_ARRAY_TASK_ID)"),
   };
 }
 

@@ -67,35 +67,7 @@ std::string eiaArgs(const std::string& display, const std::string& dir, const st
   return "eia --quiet --display " + display + " --out " + dir + "/" + stem + ".exr --sdf " + dir + "/" + stem + ".sdf";
 }
 
-// Starts inim with `args` (split at spaces), output to `log`. SIGINT and SIGTERM start at their
-// default actions: a test run as a background job would otherwise pass them on ignored.
-pid_t spawnInim(const std::string& args, const std::string& log) {
-  std::vector<std::string> words = {binary()};
-  std::istringstream in(args);
-  for (std::string w; in >> w;) words.push_back(w);
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&files, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  sigset_t defaults, none;
-  sigemptyset(&defaults);
-  sigaddset(&defaults, SIGINT);
-  sigaddset(&defaults, SIGTERM);
-  sigemptyset(&none);
-  posix_spawnattr_setsigdefault(&attr, &defaults);
-  posix_spawnattr_setsigmask(&attr, &none);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
-  pid_t pid = -1;
-  if (posix_spawn(&pid, argv[0], &files, &attr, argv.data(), environ) != 0) pid = -1;
-  posix_spawn_file_actions_destroy(&files);
-  posix_spawnattr_destroy(&attr);
-  return pid;
-}
+pid_t spawnInim(const std::string& args, const std::string& log) { return spawnInimBinary(binary(), args, log); }
 
 // The names in `dir` that contain ".tmp" (+ `pid`, if given).
 std::vector<std::string> temporaries(const std::string& dir, pid_t pid = 0) {
