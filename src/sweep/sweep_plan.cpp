@@ -150,6 +150,14 @@ SweepOption readOption(const JsonObject& o, const std::string& planFile) {
 
 }  // namespace
 
+bool keyPathChangesReferences(const std::string& path) {
+  if (path.rfind("placement.", 0) == 0) return true;
+  for (const char* k : {"fig11.distance_mm", "fig11.angle", "fig11.width", "fig11.reference_spp", "fig11.seed",
+                        "fig11.depth_error", "fig11.reference_every_pixel", "fig11.poses"})
+    if (path == k) return true;
+  return false;
+}
+
 Json* findKeyPath(Json& doc, const std::string& path) {
   const std::vector<PathStep> steps = parseKeyPath(path);
   if (steps.empty()) return nullptr;

@@ -81,6 +81,11 @@ std::vector<SweepPoint> expandSweep(const SweepPlan& plan, int64_t maxPoints = k
 // objects, relative file names inside them made absolute.
 Json resolvedDisplayJson(const std::string& path);
 
+// Whether a key path's value changes the reference views (the field's placement, the camera's
+// pose and distance, the references' render settings): such axes make the points render their
+// own; every display, panel and MLA key lets them share the sweep's cache.
+bool keyPathChangesReferences(const std::string& path);
+
 // Key paths: "a.b[2].c". `set` replaces an existing value (InputError naming `key` and `file`
 // when the path does not exist or, with `numeric`, the value there is not a number).
 Json* findKeyPath(Json& doc, const std::string& path);

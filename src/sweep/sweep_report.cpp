@@ -181,12 +181,15 @@ std::string sensitivitySection(const std::vector<AxisSensitivity>& sens, const S
                   " CIEDE2000 of the best, the tolerance a build must hold. A range that reaches the sweep's end "
                   "(≥, ≤) may be wider.\n\n| axis | slope (CIEDE2000 per unit) | within 1 CIEDE2000 |\n|---|---|---|\n";
   for (const AxisSensitivity& a : sens) {
-    s += "| `" + a.axis + "` | " + (a.slopeKnown ? formatNumber(a.slope, "%.3g") : std::string("– (one value)")) + " | " +
+    const bool significant = !t.noiseFloor || std::abs(a.change) >= *t.noiseFloor;
+    s += "| `" + a.axis + "` | " +
+         (a.slopeKnown ? formatNumber(a.slope, "%.3g") + (significant ? "" : " (not significant)") : std::string("– (one value)")) +
+         " | " +
          (a.loAtEnd ? "≤ " : "") + formatNumber(a.lo) + " to " + (a.hiAtEnd ? "≥ " : "") + formatNumber(a.hi) + " |\n";
   }
   if (t.noiseFloor)
-    s += "\nSlopes whose change over one step is below the noise floor (" + formatNumber(*t.noiseFloor, "%.2f") +
-         ") are not significant.\n";
+    s += "\nA slope is *not significant* when the metric changes less than the noise floor (" +
+         formatNumber(*t.noiseFloor, "%.2f") + ") between the points it is taken from.\n";
   return s + "\n";
 }
 
@@ -219,6 +222,7 @@ std::vector<AxisSensitivity> sweepSensitivity(const SweepTable& t, const std::ve
     if (line.size() > 1) {
       const size_t lo = i > 0 ? i - 1 : i, hi = i + 1 < line.size() ? i + 1 : i;
       s.slope = (y(hi) - y(lo)) / (x(hi) - x(lo));
+      s.change = y(hi) - y(lo);
       s.slopeKnown = true;
     }
     size_t lo = i, hi = i;
@@ -268,6 +272,19 @@ void writeSweepReport(const std::string& sweepDir, const SweepPlan& plan, const 
     r += "Per point: median " + formatNumber(seconds[seconds.size() / 2], "%.1f") + " s of wall time. References: " +
          std::to_string(t.rendered) + " rendered, " + std::to_string(t.cached) + " read from the sweep's cache (hit rate " +
          (refs ? formatNumber(100.0 * t.cached / refs, "%.0f") : std::string("–")) + " %).\n\n";
+  std::string shared, own;
+  for (const SweepAxis& a : plan.axes) (keyPathChangesReferences(a.path) ? own : shared) += " `" + a.path + "`";
+  for (const SweepAlternative& a : plan.alternatives) {
+    bool changes = false;
+    for (const SweepOption& o : a.options) {
+      changes = changes || !o.field.empty() || !o.camera.empty();
+      for (const auto& [k, v] : o.set) changes = changes || keyPathChangesReferences(k);
+    }
+    (changes ? own : shared) += " " + a.name;
+  }
+  r += "Which parameters change the references (the scene itself through the camera): " +
+       (own.empty() ? std::string("none;") : own + ";") + " shared by every value of:" +
+       (shared.empty() ? std::string(" none") : shared) + ".\n\n";
   r += "Noise floor of the references (CIEDE2000 between two seeds at " + (t.firstPose.empty() ? "–" : t.firstPose) +
        "): " + (t.noiseFloor ? formatNumber(*t.noiseFloor, "%.2f") : std::string("not measured (no budget)")) + ".\n\n";
   if (best) {

@@ -22,6 +22,7 @@ constexpr double kSweepToleranceDe = 1.0;
 struct AxisSensitivity {
   std::string axis;
   double slope = 0.0;      // d(metric)/d(axis) at the best point (central, or one-sided at an end)
+  double change = 0.0;     // the metric's change over the slope's span (its significance, against the noise floor)
   bool slopeKnown = false;
   double lo = 0.0, hi = 0.0;         // the axis range within kSweepToleranceDe of the best
   bool loAtEnd = false, hiAtEnd = false;  // the range reaches the sweep's end (the tolerance is wider)

@@ -8,7 +8,8 @@
 //
 // Local execution runs each point as its own process (`inim sweep --out DIR --point ID
 // --threads T`), at most `jobs` at once, each with a fixed thread budget: a crash or a memory
-// blow-up stays in its point, which is recorded as failed with its log. Points already complete
+// blow-up stays in its point, which is recorded as failed with its log. The first point runs
+// alone with all jobs' threads, so that it fills the reference cache before the others read it. Points already complete
 // (checked: sweep_point.h) are skipped, partial ones redone. Ctrl-C stops the children; their
 // outputs are written together or not at all, so nothing half-written is left.
 #include <functional>

@@ -144,6 +144,15 @@ TEST(SweepPlan, KeyPathsReachNestedValuesAndArrays) {
   EXPECT_EQ(doc["s"], "y");
 }
 
+TEST(SweepPlan, OnlyPlacementCameraAndRenderKeysChangeTheReferences) {
+  for (const char* p : {"placement.translate_mm[2]", "placement.scale[0]", "fig11.distance_mm", "fig11.width",
+                        "fig11.reference_spp", "fig11.seed", "fig11.angle"})
+    EXPECT_TRUE(keyPathChangesReferences(p)) << p;
+  for (const char* p : {"mla.pitch_mm", "reconstruction_gap_mm", "panel.pixel_pitch_mm", "fig11.spp", "fig11.eia_spp",
+                        "fig11.aperture_grid", "stack.layers[1].pitch_mm"})
+    EXPECT_FALSE(keyPathChangesReferences(p)) << p;
+}
+
 TEST(SweepPlan, ThePlanRoundTripsThroughItsJson) {
   const SweepPlan plan = planOf(kGapPitch);
   const SweepPlan again = sweepPlanFromJson(sweepPlanJson(plan), "plan.json");
