@@ -58,18 +58,17 @@ int slurmSubmission(const SweepOpts& o, const std::vector<SweepPoint>& points) {
   if (sub.tasks == 0) return std::printf("every point is complete; nothing to submit\n"), 0;
   std::printf("%d points in %d array tasks: %s\ncollection: %s\n", sub.points, sub.tasks, sub.arrayScript.c_str(),
               sub.collectScript.c_str());
-  if (!o.submit) {
-    std::printf("submit: jid=$(sbatch --parsable %s) && sbatch --dependency=afterok:$jid %s\n",
-                sub.arrayScript.c_str(), sub.collectScript.c_str());
-    return 0;
-  }
+  if (!o.submit) return std::printf("submit:\n%s", slurmSubmitCommands(sub).c_str()), 0;
   submitSlurm(o.out, sub);
-  std::printf("submitted: array job %s, collection job %s\n", sub.arrayJob.c_str(), sub.collectJob.c_str());
+  std::printf("submitted: %sarray job %s, collection job %s\n",
+              sub.firstJob.empty() ? "" : ("first task job " + sub.firstJob + ", ").c_str(), sub.arrayJob.c_str(),
+              sub.collectJob.c_str());
   return 0;
 }
 
 int runSweep(SweepOpts& o) {
   o.out = std::filesystem::absolute(o.out).lexically_normal().string();
+  while (o.out.size() > 1 && o.out.back() == '/') o.out.pop_back();  // "DIR/." normalises to "DIR/"
   if (o.referenceCache != "off" && !o.referenceCache.empty())
     o.referenceCache = std::filesystem::absolute(o.referenceCache).lexically_normal().string();
   const std::string cache = o.referenceCache.empty() ? sweepReferenceCache(o.out) : o.referenceCache;

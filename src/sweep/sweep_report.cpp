@@ -189,7 +189,9 @@ std::string sensitivitySection(const std::vector<AxisSensitivity>& sens, const S
   }
   if (t.noiseFloor)
     s += "\nA slope is *not significant* when the metric changes less than the noise floor (" +
-         formatNumber(*t.noiseFloor, "%.2f") + ") between the points it is taken from.\n";
+         formatNumber(*t.noiseFloor, "%.2f") +
+         ") between the points it is taken from. The floor is a conservative bound: points compared with the same "
+         "references (here, those that share them) differ by less noise than two references do.\n";
   return s + "\n";
 }
 

@@ -96,6 +96,7 @@ SlurmSubmission writeSlurmScripts(const std::string& sweepDir, const std::vector
     tasks += "\n";
     ++sub.tasks;
   }
+  sub.firstAlone = sub.tasks > 1 && s.referenceCache != "off";
   sub.taskList = (dir / ("tasks-" + n + ".txt")).string();
   sub.arrayScript = (dir / ("array-" + n + ".sbatch")).string();
   sub.collectScript = (dir / ("collect-" + n + ".sbatch")).string();
@@ -121,12 +122,29 @@ SlurmSubmission writeSlurmScripts(const std::string& sweepDir, const std::vector
   return sub;
 }
 
+std::string slurmSubmitCommands(const SlurmSubmission& sub) {
+  const std::string array = shellWord(sub.arrayScript), collect = shellWord(sub.collectScript);
+  if (!sub.firstAlone)
+    return "a=$(sbatch --parsable " + array + ") && sbatch --dependency=afterok:$a " + collect + "\n";
+  return "f=$(sbatch --parsable --array=0 " + array + ") && a=$(sbatch --parsable --array=1-" +
+         std::to_string(sub.tasks - 1) + " --dependency=afterany:$f " + array + ") && sbatch --dependency=afterok:$f:$a " +
+         collect + "\n";
+}
+
 void submitSlurm(const std::string& sweepDir, SlurmSubmission& sub) {
   if (sub.tasks == 0) return;
-  sub.arrayJob = sbatch(shellWord(sub.arrayScript));
-  sub.collectJob = sbatch("--dependency=afterok:" + sub.arrayJob + " " + shellWord(sub.collectScript));
-  const Json j = {{"array_job", sub.arrayJob}, {"collect_job", sub.collectJob}, {"task_list", sub.taskList},
-                  {"tasks", sub.tasks}, {"points", sub.points}};
+  const std::string array = shellWord(sub.arrayScript);
+  if (sub.firstAlone) {
+    sub.firstJob = sbatch("--array=0 " + array);
+    sub.arrayJob =
+        sbatch("--array=1-" + std::to_string(sub.tasks - 1) + " --dependency=afterany:" + sub.firstJob + " " + array);
+    sub.collectJob = sbatch("--dependency=afterok:" + sub.firstJob + ":" + sub.arrayJob + " " + shellWord(sub.collectScript));
+  } else {
+    sub.arrayJob = sbatch(array);
+    sub.collectJob = sbatch("--dependency=afterok:" + sub.arrayJob + " " + shellWord(sub.collectScript));
+  }
+  const Json j = {{"first_job", sub.firstJob}, {"array_job", sub.arrayJob}, {"collect_job", sub.collectJob},
+                  {"task_list", sub.taskList}, {"tasks", sub.tasks}, {"points", sub.points}};
   OutputSet out;
   writeTextFile(out.add((slurmDir(sweepDir) / ("submitted-" + std::to_string(sub.number) + ".json")).string()),
                 j.dump(2) + "\n");
@@ -160,7 +178,11 @@ std::string slurmLogOf(const std::string& sweepDir, const std::string& id) {
     for (size_t k = 0; k < tasks.size(); ++k) {
       if (std::find(tasks[k].begin(), tasks[k].end(), id) == tasks[k].end()) continue;
       const fs::path submitted = slurmDir(sweepDir) / ("submitted-" + ns + ".json");
-      const std::string job = fs::exists(submitted) ? readJsonFile(submitted.string()).value("array_job", "%A") : "%A";
+      std::string job = "%A";
+      if (fs::exists(submitted)) {
+        const Json j = readJsonFile(submitted.string());
+        job = k == 0 && !j.value("first_job", "").empty() ? j.value("first_job", "") : j.value("array_job", "%A");
+      }
       return (fs::absolute(slurmDir(sweepDir)) / "logs" / ("array-" + ns + "_" + job + "_" + std::to_string(k) + ".log"))
           .string();
     }

@@ -6,7 +6,7 @@
 //                    --partition); task K runs `inim sweep --out DIR --slurm-task tasks-N.txt
 //                    --task-index K`, one point after another, in the task's process
 //   collect-N.sbatch the collection step, `inim sweep --out DIR --collect`, submitted with
-//                    --dependency=afterok on the array
+//                    --dependency=afterok on the array (task 0 may go first, alone: firstAlone)
 //   logs/            the tasks' logs: array-N_<job>_<task>.log
 //   submitted-N.json the job ids (with --submit)
 // N counts the submissions, so a resubmission of the failed points keeps the earlier logs. Only
@@ -34,8 +34,15 @@ struct SlurmSubmission {
   int number = 0;  // N
   int tasks = 0, points = 0;
   std::string taskList, arrayScript, collectScript;
-  std::string arrayJob, collectJob;  // with submitSlurm
+  // Task 0 is submitted alone first and the other tasks after it (--dependency=afterany), so
+  // that it renders the references they share instead of all of them waiting on its claims
+  // (with the reference cache on and more than one task).
+  bool firstAlone = false;
+  std::string firstJob, arrayJob, collectJob;  // with submitSlurm (firstJob: with firstAlone)
 };
+
+// The sbatch commands that submitSlurm runs, as shell lines (for a user who submits by hand).
+std::string slurmSubmitCommands(const SlurmSubmission& sub);
 
 // Writes the scripts for the points not complete (none: tasks = 0 and no scripts).
 SlurmSubmission writeSlurmScripts(const std::string& sweepDir, const std::vector<SweepPoint>& points,

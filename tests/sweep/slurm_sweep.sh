@@ -6,9 +6,9 @@
 #
 # Starts munged, slurmctld and slurmd in a temporary folder (slurm_cluster.sh, which installs
 # Debian's slurm-wlm and munge when they are missing), runs a four-point sweep of a small display
-# with `inim sweep --jobs 2` and with `inim sweep --slurm --submit` (a job array of four tasks and
-# the collection step after it), waits for both jobs and checks:
-#   - the array's tasks and the collection job completed (scontrol's JobState and ExitCode);
+# with `inim sweep --jobs 2` and with `inim sweep --slurm --submit` (task 0 alone, then the three
+# other array tasks, then the collection step), waits for the jobs and checks:
+#   - the four tasks and the collection job completed (scontrol's JobState and ExitCode);
 #   - results.csv of the cluster's sweep equals the local one, byte for byte;
 #   - after one point's result is removed, --slurm --submit submits one task for that point
 #     only, and the collected table is again the same.
@@ -62,8 +62,10 @@ echo "slurm_sweep: submitting to the cluster"
 submitted="$("$INIM" sweep --plan "$WORK/plan.json" --out "$WORK/cluster" --slurm --submit --cpus-per-task 1 \
              --mem 1G --time-limit 00:10:00)"
 echo "$submitted"
-read -r array collect < <(echo "$submitted" | sed -n 's/^submitted: array job \([0-9]*\), collection job \([0-9]*\)$/\1 \2/p')
-[ -n "${array:-}" ] && [ -n "${collect:-}" ] || { echo "slurm_sweep: no job ids printed"; exit 1; }
+# The job ids printed: task 0 alone (it renders the shared references), the other tasks, the collection.
+job_ids() { echo "$1" | grep "^submitted:" | grep -o "job [0-9]*" | cut -d' ' -f2; }
+mapfile -t jobs < <(job_ids "$submitted")
+[ "${#jobs[@]}" -eq 3 ] || { echo "slurm_sweep: expected 3 job ids (first task, array, collection)"; exit 1; }
 
 # Waits until the jobs leave the queue, then checks each record's state (COMPLETED, exit 0:0).
 wait_for() {
@@ -86,8 +88,8 @@ wait_for() {
     echo "$records" | grep -q "ExitCode=0:0" || { echo "slurm_sweep: job $id exit code"; exit 1; }
   done
 }
-wait_for "$array" "$collect"
-tasks="$(scontrol -o show job "$array" | grep -c "JobState=COMPLETED")"
+wait_for "${jobs[@]}"
+tasks="$( (scontrol -o show job "${jobs[0]}"; scontrol -o show job "${jobs[1]}") | grep -c "JobState=COMPLETED")"
 [ "$tasks" -eq 4 ] || { echo "slurm_sweep: $tasks array tasks completed, expected 4"; exit 1; }
 cmp "$WORK/local/results.csv" "$WORK/cluster/results.csv"
 echo "slurm_sweep: the cluster's table equals the local one ($(wc -l < "$WORK/local/results.csv") lines)"
@@ -99,7 +101,8 @@ resubmitted="$("$INIM" sweep --out "$WORK/cluster" --slurm --submit --cpus-per-t
 echo "$resubmitted"
 echo "$resubmitted" | grep -q "^1 points in 1 array tasks" || { echo "slurm_sweep: resubmission not of one point"; exit 1; }
 [ "$(cat "$WORK/cluster/slurm/tasks-2.txt")" = "$lost" ] || { echo "slurm_sweep: tasks-2.txt is not $lost"; exit 1; }
-read -r array collect < <(echo "$resubmitted" | sed -n 's/^submitted: array job \([0-9]*\), collection job \([0-9]*\)$/\1 \2/p')
-wait_for "$array" "$collect"
+mapfile -t jobs < <(job_ids "$resubmitted")
+[ "${#jobs[@]}" -eq 2 ] || { echo "slurm_sweep: expected 2 job ids (array, collection)"; exit 1; }
+wait_for "${jobs[@]}"
 cmp "$WORK/local/results.csv" "$WORK/cluster/results.csv"
 echo "slurm_sweep: the resubmitted point's table equals the local one"
