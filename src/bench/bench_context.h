@@ -65,5 +65,7 @@ void registerPlaceBenchmarks(const RadianceBenchSettings& model, double minTime)
 void printFig11BenchResults();
 void registerReferenceBenchmarks();
 void printReferenceBenchResults();
+void registerSweepBenchmarks();
+void printSweepBenchResults();
 
 }  // namespace inim::bench

@@ -53,6 +53,7 @@ void runBenchmarks(const BenchSettings& settings) {
   bench::registerViewBenchmarks(settings.view);
   bench::registerReferenceBenchmarks();
   bench::registerFig11Benchmarks();
+  bench::registerSweepBenchmarks();
   bench::registerSplatBenchmarks(settings.minTime);
   bench::registerSceneBenchmarks();
   bench::registerMlaBenchmarks(settings.minTime);
@@ -74,6 +75,7 @@ void runBenchmarks(const BenchSettings& settings) {
   bench::printViewBenchResults();
   bench::printReferenceBenchResults();
   bench::printFig11BenchResults();
+  bench::printSweepBenchResults();
 }
 
 }  // namespace inim
