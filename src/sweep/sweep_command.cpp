@@ -34,7 +34,8 @@ bool collect(const std::string& dir, const std::vector<SweepPoint>& points, cons
     ++missing;
     const std::string log = slurmLogOf(dir, p.point->id);
     print("  " + p.point->id + " " + p.status + (p.error.empty() ? "" : ": " + p.error) +
-          (log.empty() ? "" : "\n    log: " + log) + "\n");
+          (log.empty() ? "" : "\n    log: " + log) + "\n    alone: " + sweepPointCommand(currentProgram(), dir, p.point->id) +
+          "\n");
   }
   if (const SweepPoint* best = bestSweepPoint(t, points))
     print("best point: " + best->id + " (CIEDE2000 mean " +
