@@ -19,20 +19,28 @@ WORK="$2"
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 rm -rf "$WORK"
 mkdir -p "$WORK"
-# The cluster's folder holds unix sockets: a short path.
-CLUSTER="$(mktemp -d /tmp/inim-slurm-XXXXXX)"
-cleanup() { "$HERE/slurm_cluster.sh" stop "$CLUSTER" >/dev/null 2>&1 || true; rm -rf "$CLUSTER"; }
+CLUSTER=""
+cleanup() { [ -z "$CLUSTER" ] || { "$HERE/slurm_cluster.sh" stop "$CLUSTER" >/dev/null 2>&1 || true; rm -rf "$CLUSTER"; }; }
 trap cleanup EXIT
 
-set +e
-started="$("$HERE/slurm_cluster.sh" start "$CLUSTER")"
-status=$?
-set -e
-if [ "$status" -eq 77 ]; then
-  echo "$started"
-  exit 77
-fi
-[ "$status" -eq 0 ] || { echo "slurm_sweep: the cluster did not start (status $status)"; exit 1; }
+# The cluster's folder holds unix sockets: a short path. A start can lose a race for its ports
+# with another program: then once more in a fresh folder (its messages stay in the test's log).
+for attempt in 1 2 3; do
+  CLUSTER="$(mktemp -d /tmp/inim-slurm-XXXXXX)"
+  set +e
+  started="$("$HERE/slurm_cluster.sh" start "$CLUSTER")"
+  status=$?
+  set -e
+  if [ "$status" -eq 77 ]; then
+    echo "$started"
+    exit 77
+  fi
+  [ "$status" -eq 0 ] && break
+  echo "slurm_sweep: the cluster did not start (attempt $attempt, status $status): $started"
+  cleanup
+  CLUSTER=""
+  [ "$attempt" -lt 3 ] || exit 1
+done
 export "$(echo "$started" | tail -n 1)"
 echo "slurm_sweep: cluster up, $SLURM_CONF"
 
