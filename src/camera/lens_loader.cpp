@@ -25,11 +25,7 @@ void toAfterConvention(std::vector<LensSurface>& s) {
   for (size_t i = 0; i < s.size(); ++i) s[i].thicknessMm = i + 1 < s.size() ? s[i + 1].thicknessMm : 0.0;
 }
 
-std::string knownGlasses() {
-  std::string list = "air";
-  for (const auto& n : MaterialCatalog::standard().dielectricNames()) list += ", " + n;
-  return list;
-}
+std::string knownGlasses() { return "air, " + MaterialCatalog::standard().dielectricsText(); }
 
 }  // namespace
 

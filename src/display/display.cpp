@@ -79,10 +79,8 @@ static void checkMaterial(const Display& d, const std::string& key, const std::s
                           const std::string& partFile) {
   const MaterialCatalog& catalog = MaterialCatalog::standard();
   if (catalog.hasDielectric(material)) return;
-  std::string known;
-  for (const auto& n : catalog.dielectricNames()) known += (known.empty() ? "" : ", ") + n;
   throw InputError(d.file, key, "\"" + material + "\"" + (partFile != d.file ? " (in " + partFile + ")" : ""),
-                   "a dielectric of the material catalog: " + known);
+                   "a dielectric of the material catalog: " + catalog.dielectricsText());
 }
 
 // "stack" in place of "mla" and "reconstruction_gap_mm": the stack places the panel.

@@ -31,9 +31,7 @@ std::string readMaterial(const JsonObject& o) {
   const std::string name = o.string("material");
   const MaterialCatalog& catalog = MaterialCatalog::standard();
   if (catalog.hasDielectric(name)) return name;
-  std::string known;
-  for (const auto& n : catalog.dielectricNames()) known += (known.empty() ? "" : ", ") + n;
-  o.fail("material", "\"" + name + "\"", "a dielectric of the material catalog: " + known);
+  o.fail("material", "\"" + name + "\"", "a dielectric of the material catalog: " + catalog.dielectricsText());
 }
 
 // "plane", or {"radius_mm": R, "conic": k, "asphere": [a4, a6, ...]}.

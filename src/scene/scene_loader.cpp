@@ -328,7 +328,7 @@ Material parseMaterial(const JsonObject& m, const std::string& name) {
         std::string n = v.get<std::string>();
         if (!cat().hasDielectric(n))
           m.fail("ior", quoteStr(n), "a constant index or a dielectric of spectra/materials.json (known: " +
-                                       joinNames(cat().dielectricNames()) + ")");
+                                       cat().dielectricsText() + ")");
         mat.ior = cat().dielectric(n);
       } else {
         m.fail("ior", jsonValueText(v), "a number or a catalog name");

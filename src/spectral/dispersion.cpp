@@ -2,9 +2,14 @@
 
 #include <cmath>
 
+#include <algorithm>
+#include <filesystem>
+
 #include "core/error.h"
+#include "core/format.h"
 #include "core/json_config.h"
 #include "core/output_file.h"
+#include "spectral/glass_catalog.h"
 
 namespace inim {
 
@@ -112,12 +117,48 @@ std::string joinNames(const std::vector<std::string>& names) {
 }
 }  // namespace
 
+const std::vector<GlassCatalog>& MaterialCatalog::glassCatalogues() const {
+  std::call_once(glassOnce_, [this] {
+    auto cats = std::make_shared<std::vector<GlassCatalog>>();
+    std::vector<std::string> files;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(path_).parent_path() / "glass", ec))
+      if (lowerExtension(e.path().string()) == ".agf") files.push_back(e.path().string());
+    std::sort(files.begin(), files.end());
+    for (const std::string& f : files) cats->push_back(loadAgf(f));
+    glasses_ = std::move(cats);
+  });
+  return *glasses_;
+}
+
+IorPtr MaterialCatalog::catalogueGlass(const std::string& name) const {
+  const size_t colon = name.find(':');
+  const std::string catalogue = colon == std::string::npos ? "" : name.substr(0, colon);
+  const std::string glass = colon == std::string::npos ? name : name.substr(colon + 1);
+  for (const GlassCatalog& c : glassCatalogues()) {
+    if (!catalogue.empty() && c.name != catalogue) continue;
+    if (const CatalogGlass* g = c.find(glass)) return std::make_shared<CatalogGlassIor>(*g);
+  }
+  return nullptr;
+}
+
+bool MaterialCatalog::hasDielectric(const std::string& name) const {
+  return dielectrics_.count(name) > 0 || catalogueGlass(name) != nullptr;
+}
+
+std::string MaterialCatalog::dielectricsText() const {
+  std::string s = joinNames(dielectricNames());
+  std::string cats;
+  for (const GlassCatalog& c : glassCatalogues())
+    cats += (cats.empty() ? "" : ", ") + c.name + " (" + std::to_string(c.glasses.size()) + " glasses)";
+  return cats.empty() ? s : s + ", or a glass of the catalogues " + cats + " as NAME or CATALOGUE:NAME";
+}
+
 IorPtr MaterialCatalog::dielectric(const std::string& name) const {
   auto it = dielectrics_.find(name);
-  if (it == dielectrics_.end())
-    throw InputError(path_, "material", name,
-                     "a dielectric of the catalog: " + joinNames(dielectricNames()));
-  return it->second;
+  if (it != dielectrics_.end()) return it->second;
+  if (IorPtr g = catalogueGlass(name)) return g;
+  throw InputError(path_, "material", name, "a dielectric of the catalog: " + dielectricsText());
 }
 
 const ConductorIndex& MaterialCatalog::conductor(const std::string& name) const {

@@ -1,8 +1,12 @@
 #pragma once
 // Refractive index as a function of wavelength (nm), and the material catalog
-// (spectra/materials.json): dielectrics with n(lambda), conductors with n and k.
+// (spectra/materials.json): dielectrics with n(lambda), conductors with n and k. A dielectric
+// not named there is looked up in the glass catalogues of the glass/ folder beside it
+// (spectra/glass/*.agf: SCHOTT, OHARA; spectral/glass_catalog.h), as "NAME" (the first
+// catalogue, alphabetically, that has it) or "CATALOGUE:NAME" ("OHARA:S-LAH66").
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -65,23 +69,33 @@ struct ConductorIndex {
   SpectrumPtr eta, k;
 };
 
+struct GlassCatalog;
+
 class MaterialCatalog {
  public:
   // The shipped catalog, spectra/materials.json.
   static const MaterialCatalog& standard();
   explicit MaterialCatalog(const std::string& jsonPath);
-  bool hasDielectric(const std::string& name) const { return dielectrics_.count(name) > 0; }
+  bool hasDielectric(const std::string& name) const;
   bool hasConductor(const std::string& name) const { return conductors_.count(name) > 0; }
   // Throw InputError naming the material and listing known names when absent.
   IorPtr dielectric(const std::string& name) const;
   const ConductorIndex& conductor(const std::string& name) const;
-  std::vector<std::string> dielectricNames() const;
+  std::vector<std::string> dielectricNames() const;  // those of materials.json
   std::vector<std::string> conductorNames() const;
+  // What a dielectric's name may be, for messages: materials.json's names and the catalogues.
+  std::string dielectricsText() const;
+  // The glass catalogues (loaded on first use; empty when the folder has none).
+  const std::vector<GlassCatalog>& glassCatalogues() const;
 
  private:
+  // A catalogue glass by "NAME" or "CATALOGUE:NAME", or null.
+  IorPtr catalogueGlass(const std::string& name) const;
   std::string path_;
   std::map<std::string, IorPtr> dielectrics_;
   std::map<std::string, ConductorIndex> conductors_;
+  mutable std::once_flag glassOnce_;
+  mutable std::shared_ptr<const std::vector<GlassCatalog>> glasses_;
 };
 
 }  // namespace inim

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "expect_input_error.h"
+#include "spectral/dispersion.h"
 #include "spectral/glass_catalog.h"
 
 using namespace inim;
@@ -135,4 +136,30 @@ TEST(GlassCatalog, BadCataloguesAreRefusedNamingTheLineAndTheValue) {
   refused("CC nothing\n", "", "no glass");
   refused("NM G 2 0 1.5 60\nCD 1 0 0 0 0 0\nNM H 2 0 1.5 60\n", "glass H", "no CD line");  // truncated
   refused(std::string("\xFF\xFEN\0M", 5), "", "odd number of bytes");
+}
+
+// The shipped catalogues (spectra/glass/): every glass's formula gives the n_d its NM line states.
+TEST(GlassCatalog, ShippedCataloguesGiveTheirOwnStatedIndices) {
+  const std::vector<GlassCatalog>& cats = MaterialCatalog::standard().glassCatalogues();
+  ASSERT_GE(cats.size(), 2u);
+  size_t glasses = 0;
+  for (const GlassCatalog& c : cats)
+    for (const CatalogGlass& g : c.glasses) {
+      EXPECT_NEAR(g.index(kD), g.nd, 1e-5) << c.name << " " << g.name;
+      ++glasses;
+    }
+  EXPECT_GE(glasses, 159u + 398u);
+}
+
+TEST(GlassCatalog, MaterialNamesResolveThroughTheCatalogues) {
+  const MaterialCatalog& m = MaterialCatalog::standard();
+  ASSERT_TRUE(m.hasDielectric("N-SF6"));
+  EXPECT_NEAR(m.dielectric("N-SF6")->n(587.5618f), 1.80518, 1e-5);
+  ASSERT_TRUE(m.hasDielectric("OHARA:S-LAH66"));
+  EXPECT_NEAR(m.dielectric("OHARA:S-LAH66")->n(587.5618f), 1.77250, 1e-5);
+  EXPECT_FALSE(m.hasDielectric("SCHOTT:S-LAH66"));  // the catalogue named, the glass not in it
+  // materials.json keeps its own names (the same N-BK7 either way).
+  EXPECT_NEAR(m.dielectric("N-BK7")->n(486.1327f), m.dielectric("SCHOTT:N-BK7")->n(486.1327f), 1e-6);
+  const InputError e = expectInputError([&] { m.dielectric("N-BK8"); });
+  EXPECT_NE(std::string(e.what()).find("SCHOTT (159 glasses)"), std::string::npos) << e.what();
 }
