@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <system_error>
 
 #include "core/error.h"
@@ -29,6 +31,15 @@ uint64_t checkInputFile(const std::string& path) {
     throw InputError(path, "", formatBytes(double(size)),
                      "a file no larger than " + formatBytes(double(limit)) + " (the memory limit, --max-memory)");
   return size;
+}
+
+std::string readInputFile(const std::string& path) {
+  checkInputFile(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "unreadable", "a readable file");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
 }
 
 }  // namespace inim

@@ -15,5 +15,7 @@ constexpr uint64_t kMinInputFileLimitBytes = uint64_t(64) << 20;
 uint64_t inputFileLimitBytes();
 // The file's size in bytes (0 when it does not exist); InputError naming `path` otherwise.
 uint64_t checkInputFile(const std::string& path);
+// The file's bytes, after checkInputFile; InputError naming `path` when it cannot be read.
+std::string readInputFile(const std::string& path);
 
 }  // namespace inim

@@ -4,11 +4,11 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace inim {
 
@@ -195,11 +195,8 @@ GlassCatalog parseAgf(const std::string& bytes, const std::string& file) {
 }
 
 GlassCatalog loadAgf(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "missing", "a readable .agf glass catalogue");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parseAgf(s.str(), path);
+  if (!std::filesystem::exists(path)) throw InputError(path, "", "missing", "a readable .agf glass catalogue");
+  return parseAgf(readInputFile(path), path);
 }
 
 }  // namespace inim

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include "core/content_hash.h"
@@ -288,28 +289,32 @@ int64_t sweepPointCount(const SweepPlan& plan) {
 
 namespace {
 
-// The base design with one option of each alternative applied.
-struct Design {
-  std::string display, field, camera;
-  Json placement, fig11;
-  std::vector<std::pair<std::string, Json>> set;
-};
+bool underPlacement(const std::string& path) { return path.rfind("placement.", 0) == 0; }
+
+// The placement vectors that `paths` reach and the plan does not give, from the field's own
+// placement (read once per field: a trained model's carries its units), so an axis can vary one
+// component of them.
+void fillPlacementDefaults(Json& config, const std::vector<std::string>& paths,
+                           std::map<std::string, Placement>& ownPlacements) {
+  Json& pl = config["placement"];
+  for (const std::string& path : paths) {
+    if (!underPlacement(path)) continue;
+    const std::string name = path.substr(10, path.find('[') == std::string::npos ? std::string::npos : path.find('[') - 10);
+    if (pl.contains(name) || (name != "scale" && name != "rotate_deg" && name != "translate_mm")) continue;
+    const std::string field = config["field"].get<std::string>();
+    auto it = ownPlacements.find(field);
+    if (it == ownPlacements.end())
+      it = ownPlacements.emplace(field, loadField(field, "field").placement.value_or(Placement{})).first;
+    const Vec3d d = name == "scale" ? it->second.scale : name == "rotate_deg" ? it->second.rotateDeg : it->second.translateMm;
+    pl[name] = {d.x, d.y, d.z};
+  }
+}
 
 void setDesignValue(Json& config, const std::string& path, const Json& v, const std::string& file,
                     const std::string& key, bool numeric) {
-  auto under = [&](const std::string& prefix) { return path.rfind(prefix, 0) == 0; };
-  if (under("placement.")) {
-    Json& pl = config["placement"];
-    const std::string rest = path.substr(10);
-    const std::string name = rest.substr(0, rest.find('['));
-    if (!pl.contains(name) && (name == "scale" || name == "rotate_deg" || name == "translate_mm")) {
-      const std::optional<Placement> own = loadField(config["field"].get<std::string>(), "field").placement;
-      const Placement p = own.value_or(Placement{});
-      const Vec3d d = name == "scale" ? p.scale : name == "rotate_deg" ? p.rotateDeg : p.translateMm;
-      pl[name] = {d.x, d.y, d.z};
-    }
-    setKeyPath(pl, rest, v, file, key, numeric);
-  } else if (under("fig11.")) {
+  if (underPlacement(path)) {
+    setKeyPath(config["placement"], path.substr(10), v, file, key, numeric);
+  } else if (path.rfind("fig11.", 0) == 0) {
     setKeyPath(config["fig11"], path.substr(6), v, file, key, numeric);
   } else {
     setKeyPath(config["display"], path, v, file, key, numeric);
@@ -366,6 +371,8 @@ std::vector<SweepPoint> expandSweep(const SweepPlan& plan, int64_t maxPoints) {
     }
     return it->second;
   };
+  std::map<std::string, Placement> ownPlacements;  // each field's own placement, read once
+  std::set<std::string> ids;
   std::vector<SweepPoint> points;
   const auto axisSets = axisCombinations(plan);
   for (const auto& options : optionCombinations(plan)) {
@@ -385,6 +392,10 @@ std::vector<SweepPoint> expandSweep(const SweepPlan& plan, int64_t maxPoints) {
     }
     config["display"] = displayJson(display);
     config["display_file"] = display;
+    std::vector<std::string> paths;
+    for (const auto& [k, v, where] : sets) paths.push_back(k);
+    for (const SweepAxis& a : plan.axes) paths.push_back(a.path);
+    fillPlacementDefaults(config, paths, ownPlacements);
     for (const auto& [k, v, where] : sets) setDesignValue(config, k, v, plan.file, where + "." + k, false);
     for (const auto& values : axisSets) {
       SweepPoint p;
@@ -396,10 +407,12 @@ std::vector<SweepPoint> expandSweep(const SweepPlan& plan, int64_t maxPoints) {
         p.values.emplace_back(plan.axes[i].path, values[i]);
       }
       p.id = hashId(p.values, p.choices);
-      for (const SweepPoint& q : points)
-        if (q.id == p.id)
-          throw InputError(plan.file, "axes", "points " + std::to_string(q.index) + " and " + std::to_string(p.index),
-                           "different parameters (a value or an option label given twice)");
+      if (!ids.insert(p.id).second) {
+        const int first = int(std::find_if(points.begin(), points.end(), [&](const SweepPoint& q) { return q.id == p.id; }) -
+                              points.begin());
+        throw InputError(plan.file, "axes", "points " + std::to_string(first) + " and " + std::to_string(p.index),
+                         "different parameters (a value or an option label given twice)");
+      }
       points.push_back(std::move(p));
     }
   }

@@ -1,11 +1,10 @@
 #include "sweep/sweep_point.h"
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "core/content_hash.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/interrupt.h"
 #include "core/output_file.h"
 #include "core/parallel.h"
@@ -22,16 +21,9 @@ constexpr const char* kResultFormat = "inim sweep point 1";
 // fig11's outputs whose bytes result.json records (those present).
 const char* const kHashedOutputs[] = {"fig11/metrics.json", "fig11/budget.json"};
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 void writeIfChanged(OutputSet& out, const std::string& path, const std::string& text) {
   std::error_code ec;
-  if (fs::is_regular_file(path, ec) && readText(path) == text) return;
+  if (fs::is_regular_file(path, ec) && readInputFile(path) == text) return;
   writeTextFile(out.add(path), text);
 }
 

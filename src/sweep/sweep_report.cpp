@@ -242,7 +242,7 @@ void writeSweepReport(const std::string& sweepDir, const SweepPlan& plan, const 
   const fs::path dir(sweepDir);
   OutputSet out;
   writeTextFile(out.add((dir / "results.csv").string()), sweepTableCsv(t, points));
-  writeTextFile(out.add((dir / "results.json").string()), sweepTableJson(t, points).dump(2) + "\n");
+  writeTextFile(out.add((dir / "results.json").string()), sweepTableJson(t).dump(2) + "\n");
   const SweepPoint* best = bestSweepPoint(t, points);
   std::string figures;
   if (best) {

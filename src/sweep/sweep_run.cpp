@@ -122,18 +122,17 @@ SweepRunSummary runSweepLocal(const std::vector<SweepPoint>& points, const Sweep
   note();
   std::map<pid_t, Child> running;
   size_t next = 0;
-  bool warmingUp = false;  // the first point is running alone
+  // The first point runs alone with every thread: it renders the references the others
+  // share, which they would otherwise wait for with their cores idle (reference_cache.h).
+  const bool warmUp = queue.size() > 1 && jobs > 1 && s.referenceCache != "off";
   try {
     while (next < queue.size() || !running.empty()) {
       throwIfInterrupted();
-      // The first point runs alone with every thread: it renders the references the others
-      // share, which they would otherwise wait for with their cores idle (reference_cache.h).
-      const bool warmUp = next == 0 && queue.size() > 1 && jobs > 1 && s.referenceCache != "off";
-      const int limit = warmUp || (next == 1 && !running.empty() && warmingUp) ? 1 : jobs;
-      while (int(running.size()) < limit && next < queue.size()) {
-        warmingUp = warmUp;
+      const bool firstAlone = warmUp && (next == 0 || (next == 1 && !running.empty()));
+      while (int(running.size()) < (firstAlone ? 1 : jobs) && next < queue.size()) {
+        const int pointThreads = warmUp && next == 0 ? threads * jobs : threads;
         const std::string& id = queue[next++];
-        running[spawnPoint(s, id, warmUp ? threads * jobs : threads)] = {id, std::chrono::steady_clock::now()};
+        running[spawnPoint(s, id, pointThreads)] = {id, std::chrono::steady_clock::now()};
       }
       int status = 0;
       const pid_t pid = waitpid(-1, &status, WNOHANG);

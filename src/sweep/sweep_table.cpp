@@ -107,8 +107,7 @@ std::string sweepTableCsv(const SweepTable& t, const std::vector<SweepPoint>& po
   return csvText(header, rows);
 }
 
-Json sweepTableJson(const SweepTable& t, const std::vector<SweepPoint>& points) {
-  (void)points;
+Json sweepTableJson(const SweepTable& t) {
   Json j;
   j["rows"] = Json::array();
   for (const SweepRow& r : t.rows) {

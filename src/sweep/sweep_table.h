@@ -45,6 +45,6 @@ SweepTable collectSweepTable(const std::string& sweepDir, const std::vector<Swee
 
 // The CSV and JSON texts.
 std::string sweepTableCsv(const SweepTable& t, const std::vector<SweepPoint>& points);
-Json sweepTableJson(const SweepTable& t, const std::vector<SweepPoint>& points);
+Json sweepTableJson(const SweepTable& t);
 
 }  // namespace inim
