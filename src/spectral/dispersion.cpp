@@ -135,11 +135,21 @@ IorPtr MaterialCatalog::catalogueGlass(const std::string& name) const {
   const size_t colon = name.find(':');
   const std::string catalogue = colon == std::string::npos ? "" : name.substr(0, colon);
   const std::string glass = colon == std::string::npos ? name : name.substr(colon + 1);
+  const CatalogGlass* found = nullptr;
+  std::string where;
   for (const GlassCatalog& c : glassCatalogues()) {
     if (!catalogue.empty() && c.name != catalogue) continue;
-    if (const CatalogGlass* g = c.find(glass)) return std::make_shared<CatalogGlassIor>(*g);
+    const CatalogGlass* g = c.find(glass);
+    if (!g) continue;
+    // A bare name two makers use for different glasses (F2: CDGM n_d 1.61293, SCHOTT 1.62004)
+    // is ambiguous; guessing one would change a lens silently.
+    if (found && std::abs(found->nd - g->nd) > 1e-6)
+      throw InputError(path_, "material", name,
+                       "a glass name of one catalogue: " + where + " and " + c.name + ":" + g->name + " (n_d " +
+                           formatNumber(g->nd) + ") differ; write CATALOGUE:NAME");
+    if (!found) found = g, where = c.name + ":" + g->name + " (n_d " + formatNumber(g->nd) + ")";
   }
-  return nullptr;
+  return found ? std::make_shared<CatalogGlassIor>(*found) : nullptr;
 }
 
 bool MaterialCatalog::hasDielectric(const std::string& name) const {

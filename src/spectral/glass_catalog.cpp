@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/text_encoding.h"
 #include "core/input_file.h"
 
 namespace inim {
@@ -35,31 +36,6 @@ double powerSeries(const std::vector<double>& a, std::initializer_list<int> powe
   int i = 0;
   for (int p : powers) s += a[i++] * std::pow(l, p);
   return s;
-}
-
-// UTF-16 (by its byte-order mark, or by NULs in every other byte) or UTF-8 into UTF-8.
-std::string utf8Text(const std::string& bytes, const std::string& file) {
-  auto at = [&](size_t i) { return static_cast<unsigned char>(bytes[i]); };
-  if (bytes.size() >= 3 && at(0) == 0xEF && at(1) == 0xBB && at(2) == 0xBF) return bytes.substr(3);
-  bool le = bytes.size() >= 2 && at(0) == 0xFF && at(1) == 0xFE, be = bytes.size() >= 2 && at(0) == 0xFE && at(1) == 0xFF;
-  size_t start = le || be ? 2 : 0;
-  if (!le && !be && bytes.size() >= 4 && bytes[1] == '\0' && bytes[3] == '\0') le = true;  // no mark
-  if (!le && !be) return bytes;
-  if ((bytes.size() - start) % 2 != 0) throw InputError(file, "", "an odd number of bytes", "UTF-16 text");
-  std::string out;
-  for (size_t i = start; i + 1 < bytes.size(); i += 2) {
-    const unsigned u = le ? at(i) | at(i + 1) << 8 : at(i) << 8 | at(i + 1);
-    if (u >= 0xD800 && u <= 0xDFFF) {  // surrogates: not in any glass catalogue's text
-      out += '?';
-    } else if (u < 0x80) {
-      out += char(u);
-    } else if (u < 0x800) {
-      out += char(0xC0 | u >> 6), out += char(0x80 | (u & 0x3F));
-    } else {
-      out += char(0xE0 | u >> 12), out += char(0x80 | (u >> 6 & 0x3F)), out += char(0x80 | (u & 0x3F));
-    }
-  }
-  return out;
 }
 
 std::vector<std::string> words(const std::string& line) {
@@ -145,7 +121,7 @@ GlassCatalog parseAgf(const std::string& bytes, const std::string& file) {
   cat.file = file;
   cat.name = std::filesystem::path(file).stem().string();
   std::transform(cat.name.begin(), cat.name.end(), cat.name.begin(), [](unsigned char ch) { return char(std::toupper(ch)); });
-  std::istringstream in(utf8Text(bytes, file));
+  std::istringstream in(utf8FromBytes(bytes, file));
   LineReader r{file, 0, ""};
   bool haveCd = true;
   for (std::string text; std::getline(in, text);) {
@@ -184,9 +160,10 @@ GlassCatalog parseAgf(const std::string& bytes, const std::string& file) {
           throw InputError(file, r.where("LD"), "\"" + text.substr(0, 60) + "\"", "LD min max, in um, 0 < min < max");
         g.minUm = v[0], g.maxUm = v[1];
       }
-    } else if (key != "CC" && key != "GC" && key != "ED" && key != "TD" && key != "OD" && key != "IT" && key != "BD") {
+    } else if (key != "CC" && key != "GC" && key != "ED" && key != "TD" && key != "OD" && key != "IT" && key != "BD" &&
+               key != "MD") {
       throw InputError(file, "line " + std::to_string(r.line), "\"" + text.substr(0, 40) + "\"",
-                       "an .agf line: NM, CD, LD, CC, GC, ED, TD, OD, IT or BD");
+                       "an .agf line: NM, CD, LD, CC, GC, ED, TD, OD, IT, BD or MD");
     }
   }
   finishGlass(r, cat.glasses, haveCd);

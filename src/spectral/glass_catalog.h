@@ -6,7 +6,7 @@
 //   NM <name> <formula> <MIL#> <n_d> <V_d> [<exclude> <status> <melt>]   a glass
 //   CD <c0> <c1> ...                                                    its formula's coefficients
 //   LD <min um> <max um>                                                the range of the data
-//   CC, GC, ED, TD, OD, IT, BD                                          comments and data not used here
+//   CC, GC, ED, TD, OD, IT, BD, MD                                      comments and data not used here
 //
 // The formulas (wavelength l in um; Zemax's codes):
 //   1 Schott        n^2 = a0 + a1 l^2 + a2 l^-2 + a3 l^-4 + a4 l^-6 + a5 l^-8
