@@ -105,12 +105,7 @@ void LensSystem::rebuild() {
 }
 
 double LensSystem::sag(int i, double r) const {
-  const LensSurface& s = surfaces_[size_t(i)];
-  const double c = s.curvature();
-  if (c == 0.0) return 0.0;
-  const double arg = 1.0 - (1.0 + s.conic) * c * c * r * r;
-  if (arg < 0.0) return std::numeric_limits<double>::quiet_NaN();
-  return c * r * r / (1.0 + std::sqrt(arg));
+  return surfaces_[size_t(i)].shape().sag(r * r);
 }
 
 double LensSystem::indexAfter(int i, double lambdaNm) const {
@@ -164,7 +159,9 @@ TraceResult LensSystem::traceWithIndices(LensRay& r, const double* nAfter, Trace
     const LensSurface& s = surfaces_[size_t(i)];
     const double c = curvature_[size_t(i)];
     const Vec3d oLocal(r.o.x, r.o.y, r.o.z - z_[size_t(i)]);
-    const double t = intersectConic(oLocal, r.d, c, s.conic, kTMin);
+    double asphereSlope = 0.0;
+    const double t = s.isAsphere() ? intersectEvenAsphere(oLocal, r.d, s.shape(), kTMin, nullptr, &asphereSlope)
+                                   : intersectConic(oLocal, r.d, c, s.conic, kTMin);
     if (t < kTMin) {
       res.status = TraceStatus::Missed;
       res.surface = i;
@@ -187,7 +184,7 @@ TraceResult LensSystem::traceWithIndices(LensRay& r, const double* nAfter, Trace
     Vec3d dOut = r.d;
     Vec3d normal(0.0, 0.0, -1.0);
     if (!s.isStop && n1 != n2) {
-      normal = conicNormal(pLocal, c, s.conic);
+      normal = s.isAsphere() ? evenAsphereNormalFromSlope(pLocal, asphereSlope) : conicNormal(pLocal, c, s.conic);
       if (glm::dot(normal, r.d) > 0.0) normal = -normal;
       if (!snellRefract(r.d, normal, n1, n2, dOut)) {
         res.status = TraceStatus::TotalInternalReflection;
@@ -220,6 +217,14 @@ void LensSystem::fail(int i, const std::string& column, const std::string& value
                             : column == "index"     ? "glass"
                                                     : column;
       key = src + "." + jsonKey;
+    } else if (src.rfind("SURF ", 0) == 0) {  // a .zmx file: its keywords
+      key = src + ", " + (column == "radius"      ? "CURV"
+                          : column == "thickness" ? "DISZ"
+                          : column == "aperture"  ? "DIAM"
+                          : column == "index"     ? "GLAS"
+                          : column == "conic"     ? "CONI"
+                          : column == "asphere"   ? "PARM"
+                                                  : column);
     } else {
       key = (src.empty() ? "surface " + std::to_string(i) : src) + ", column '" + column + "'";
     }
@@ -256,6 +261,7 @@ void LensSystem::validateSurfaces() const {
     if (i == n - 1 && !s.isAir())
       fail(i, "index", s.mediumName, "air after the last surface (image space)");
     if (s.isStop && s.radiusMm != 0.0) fail(i, "radius", formatNumber(s.radiusMm), "a flat stop (radius 0)");
+    validateAsphere(i);
     const double c = s.curvature();
     if (c != 0.0) {
       const double a = s.semiAperture();
@@ -269,17 +275,42 @@ void LensSystem::validateSurfaces() const {
   }
 }
 
-// Neighbouring surfaces must not cross inside their common aperture.
+// Aspheric terms: finite, not on the stop, and a sag and slope defined over the whole aperture
+// (a conic term can end inside it), sampled finely enough to find where it ends.
+void LensSystem::validateAsphere(int i) const {
+  const LensSurface& s = surfaces_[size_t(i)];
+  if (!s.isAsphere()) return;
+  for (size_t j = 0; j < s.asphere.size(); ++j)
+    if (!std::isfinite(s.asphere[j]))
+      fail(i, "asphere", formatNumber(s.asphere[j]), "finite even-asphere coefficients (term " + std::to_string(j + 1) + ")");
+  if (s.isStop) fail(i, "asphere", formatNumber(s.asphere[0]), "a flat stop (no aspheric terms)");
+  const EvenAsphere shape = s.shape();
+  constexpr int kSamples = 256;
+  for (int j = 0; j <= kSamples; ++j) {
+    const double r = s.semiAperture() * j / kSamples;
+    if (!std::isfinite(shape.sag(r * r)) || !std::isfinite(shape.slope(r * r)))
+      fail(i, "aperture", formatNumber(s.apertureMm),
+           "an aperture within which the aspheric sag is defined (it ends at height " + formatNumber(r) + " mm)");
+  }
+}
+
+// Neighbouring surfaces must not cross inside their common aperture. Aspheres can cross inside
+// it without crossing at its edge, so heights are sampled.
 void LensSystem::validateSpacing() const {
   const int n = int(surfaces_.size());
   for (int i = 0; i + 1 < n; ++i) {
-    const double r = std::min(surfaces_[size_t(i)].semiAperture(), surfaces_[size_t(i + 1)].semiAperture());
-    const double zi = z_[size_t(i)] + sag(i, r);
-    const double zj = z_[size_t(i + 1)] + sag(i + 1, r);
-    if (zi > zj + 1e-9)
-      fail(i, "thickness", formatNumber(surfaces_[size_t(i)].thicknessMm),
-           "a thickness large enough that this surface and the next do not cross within their apertures "
-           "(they cross by " + formatNumber(zi - zj) + " mm at height " + formatNumber(r) + " mm)");
+    const double rMax = std::min(surfaces_[size_t(i)].semiAperture(), surfaces_[size_t(i + 1)].semiAperture());
+    const bool sampled = surfaces_[size_t(i)].isAsphere() || surfaces_[size_t(i + 1)].isAsphere();
+    const int samples = sampled ? 64 : 1;
+    for (int j = 1; j <= samples; ++j) {
+      const double r = rMax * j / samples;
+      const double zi = z_[size_t(i)] + sag(i, r);
+      const double zj = z_[size_t(i + 1)] + sag(i + 1, r);
+      if (zi > zj + 1e-9)
+        fail(i, "thickness", formatNumber(surfaces_[size_t(i)].thicknessMm),
+             "a thickness large enough that this surface and the next do not cross within their apertures "
+             "(they cross by " + formatNumber(zi - zj) + " mm at height " + formatNumber(r) + " mm)");
+    }
   }
 }
 

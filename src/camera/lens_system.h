@@ -1,5 +1,6 @@
 #pragma once
-// A sequential lens: rotationally symmetric spherical or conic surfaces along the optical axis,
+// A sequential lens: rotationally symmetric spherical, conic or even-asphere surfaces along the
+// optical axis,
 // one of them the aperture stop, traced with real rays in double precision.
 //
 // Lens coordinates (mm): the optical axis is z, the first surface's vertex (object side) is at
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "camera/even_asphere.h"
 #include "core/geometry.h"
 #include "spectral/dispersion.h"
 
@@ -30,6 +32,7 @@ struct LensRay {
 struct LensSurface {
   double radiusMm = 0.0;    // vertex radius of curvature; 0 = flat
   double conic = 0.0;       // k: sag z = c r^2 / (1 + sqrt(1 - (1 + k) c^2 r^2))
+  std::vector<double> asphere;  // even-asphere terms a_i on r^(2i+2), mm^(-2i-1) (even_asphere.h)
   double thicknessMm = 0.0; // vertex distance to the next surface (the last: see LensSystem)
   double apertureMm = 0.0;  // clear aperture diameter
   bool isStop = false;      // the aperture stop (flat, no refraction)
@@ -40,6 +43,17 @@ struct LensSurface {
   double curvature() const { return radiusMm == 0.0 ? 0.0 : 1.0 / radiusMm; }
   double semiAperture() const { return 0.5 * apertureMm; }
   bool isAir() const { return medium == nullptr; }
+  bool isAsphere() const { return !asphere.empty(); }
+  EvenAsphere shape() const { return {curvature(), conic, &asphere}; }
+};
+
+// What a lens file says about its design beyond the surfaces, for reports.
+struct LensDesignInfo {
+  std::vector<double> wavelengthsNm;  // the design wavelengths (Zemax WAVM), in file order
+  double primaryWavelengthNm = 0.0;   // 0: none given
+  double entrancePupilMm = 0.0;       // Zemax ENPD, 0: not given
+  double fNumber = 0.0;               // Zemax FNUM (image space), 0: not given
+  std::vector<std::string> warnings;  // what the loader read only approximately, one line each
 };
 
 enum class TraceDirection { ObjectToImage, ImageToObject };
@@ -84,12 +98,15 @@ class LensSystem {
   int surfaceCount() const { return int(surfaces_.size()); }
   const std::string& name() const { return name_; }
   const std::string& file() const { return file_; }
+  const LensDesignInfo& design() const { return design_; }
+  void setDesign(LensDesignInfo d) { design_ = std::move(d); }
   int stopIndex() const { return stop_; }  // -1 when there is none
   double vertexZ(int i) const { return z_[size_t(i)]; }
   double lastVertexZ() const { return z_.back(); }
   double lengthMm() const { return z_.back(); }  // first to last vertex
 
   // Sag of surface i at radial distance r (relative to its vertex); NaN beyond the conic.
+  // Aspheric terms included.
   double sag(int i, double r) const;
   // Index after surface i (toward the image) and before it, at a wavelength.
   double indexAfter(int i, double lambdaNm) const;
@@ -128,6 +145,7 @@ class LensSystem {
   void rebuild();
   // validate's steps (lens_system.cpp).
   void validateSurfaces() const;
+  void validateAsphere(int surface) const;
   void validateSpacing() const;
   double validateNearAxisRay() const;
   void validateStopFill(double nearAxisHeightMm) const;
@@ -137,6 +155,7 @@ class LensSystem {
   std::vector<double> z_;  // vertex positions
   std::vector<double> curvature_;  // LensSurface::curvature(), once: a division per surface and ray
   std::string name_, file_;
+  LensDesignInfo design_;
   int stop_ = -1;
   double sensorDistance_ = 0.0;
   double designStopDiameter_ = 0.0;
