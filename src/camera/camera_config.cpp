@@ -45,6 +45,8 @@ CameraDescription parseCameraDescription(const JsonObject& o, const LensLoadOpti
     c.lensSource = lv.get<std::string>();
     std::string path = resolveLensPath(c.lensSource, c.file, "lens");
     c.lens = loadLens(path, lensOptions);
+    // What the lens file could only be read approximately travels with the camera's assumptions.
+    for (const std::string& w : c.lens.design().warnings) c.assumptions.push_back("lens: " + w);
   } else {
     o.fail("lens", jsonValueText(lv), "a lens name in optics/lenses/, a lens file path, or an inline JSON lens");
   }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace inim {
 
@@ -80,6 +81,28 @@ double paraxialImageDistance(const LensSystem& lens, double objectZ, double lamb
   return extrapolate(q, h);
 }
 
+namespace {
+
+std::vector<std::string> surfaceRows(const LensSystem& lens) {
+  std::vector<std::string> rows;
+  char buf[256];
+  for (int k = 0; k < lens.surfaceCount(); ++k) {
+    const LensSurface& s = lens.surfaces()[size_t(k)];
+    std::snprintf(buf, sizeof buf, "%2d %-12s t %-9.5g %-24s D %.4g", k,
+                  s.isStop ? "stop" : ("R " + formatNumber(s.radiusMm, "%.6g")).c_str(), s.thicknessMm,
+                  s.mediumName.c_str(), s.apertureMm);
+    std::string row = buf;
+    if (s.conic != 0.0) row += "  conic " + formatNumber(s.conic, "%.6g");
+    for (size_t a = 0; a < s.asphere.size(); ++a)
+      if (s.asphere[a] != 0.0) row += "  a" + std::to_string(2 * a + 2) + " " + formatNumber(s.asphere[a], "%.6g");
+    if (!s.source.empty()) row += "  (" + s.source + ")";
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
 LensInfo analyzeLens(const LensSystem& lens, double lambdaNm) {
   LensInfo info;
   info.name = lens.name();
@@ -89,6 +112,8 @@ LensInfo analyzeLens(const LensSystem& lens, double lambdaNm) {
   info.stopSurface = lens.stopIndex();
   info.stopDiameterMm = lens.stopDiameterMm();
   info.dispersive = lens.isDispersive();
+  info.design = lens.design();
+  info.surfaceRows = surfaceRows(lens);
   info.lengthMm = lens.lengthMm();
   const int n = lens.surfaceCount();
   const int stop = lens.stopIndex();
@@ -194,6 +219,14 @@ std::string lensInfoText(const LensInfo& i) {
   o << "Length (first to last vertex): " << fmt("%.4f", i.lengthMm) << " mm\n";
   o << "Total track:                   " << fmt("%.4f", i.totalTrackMm) << " mm  (first vertex to rear focal point)\n";
   o << "(+z toward the image; found by real ray tracing of near-axis rays, extrapolated to zero height)\n";
+  if (!i.design.wavelengthsNm.empty()) {
+    o << "Design wavelengths:            ";
+    for (double nm : i.design.wavelengthsNm) o << fmt("%.2f", nm) << " ";
+    o << "nm (primary " << fmt("%.2f", i.design.primaryWavelengthNm) << " nm)\n";
+  }
+  o << "Surfaces (radius, thickness to the next, medium after, clear aperture; mm):\n";
+  for (const std::string& row : i.surfaceRows) o << "  " << row << "\n";
+  for (const std::string& w : i.design.warnings) o << "Warning: " << w << "\n";
   return o.str();
 }
 
@@ -220,6 +253,10 @@ Json lensInfoJson(const LensInfo& i) {
   j["rear_principal_plane_mm"] = i.rearPrincipalMm;
   j["length_mm"] = i.lengthMm;
   j["total_track_mm"] = i.totalTrackMm;
+  j["design_wavelengths_nm"] = i.design.wavelengthsNm;
+  j["primary_wavelength_nm"] = i.design.primaryWavelengthNm;
+  j["surface_rows"] = i.surfaceRows;
+  j["warnings"] = i.design.warnings;
   return j;
 }
 

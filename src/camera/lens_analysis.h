@@ -31,6 +31,8 @@ struct LensInfo {
   double lengthMm = 0.0;        // first vertex -> last vertex
   double totalTrackMm = 0.0;    // first vertex -> rear focal point (length + BFL)
   bool dispersive = false;
+  LensDesignInfo design;                // what the file says beyond its surfaces (Zemax files)
+  std::vector<std::string> surfaceRows;  // one line per surface as read: radius, thickness, medium, ...
 };
 
 LensInfo analyzeLens(const LensSystem& lens, double lambdaNm = kLensReferenceLambdaNm);

@@ -6,9 +6,12 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 
+#include "camera/zemax_lens.h"
 #include "core/input_file.h"
+#include "spectral/glass_catalog.h"
 #include "core/error.h"
 #include "core/format.h"
 #include "core/output_file.h"
@@ -35,7 +38,8 @@ const char* thicknessConventionName(ThicknessConvention c) {
 
 std::string resolveLensPath(const std::string& s, const std::string& contextFile, const std::string& key) {
   const std::optional<FileKind> kind = fileKindOf(s);
-  const bool isPath = s.find('/') != std::string::npos || kind == FileKind::Dat || kind == FileKind::Json;
+  const bool isPath = s.find('/') != std::string::npos || kind == FileKind::Dat || kind == FileKind::Json ||
+                      kind == FileKind::Zmx;
   if (isPath) {
     std::string p = s;
     if (fs::path(s).is_relative() && !contextFile.empty()) {
@@ -50,7 +54,7 @@ std::string resolveLensPath(const std::string& s, const std::string& contextFile
                        "\"" + s + "\"", "an existing lens file (" + p + " not found)");
     return p;
   }
-  for (const char* ext : {".json", ".dat"}) {
+  for (const char* ext : {".json", ".zmx", ".dat"}) {
     std::string p = dataPath("optics/lenses/" + s + ext);
     if (fs::exists(p)) return p;
   }
@@ -58,29 +62,52 @@ std::string resolveLensPath(const std::string& s, const std::string& contextFile
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dataPath("optics/lenses"), ec)) {
     const std::optional<FileKind> k = fileKindOf(e.path().string());
-    if (k == FileKind::Json || k == FileKind::Dat) names.push_back(e.path().stem().string());
+    if (k == FileKind::Json || k == FileKind::Dat || k == FileKind::Zmx) names.push_back(e.path().stem().string());
   }
   std::sort(names.begin(), names.end());
   std::string list;
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-  const std::string expected = "a lens file (.dat or .json) or a name in optics/lenses/ (known: " +
+  const std::string expected = "a lens file (.json, .zmx or .dat) or a name in optics/lenses/ (known: " +
                                (list.empty() ? "none" : list) + ")";
   if (contextFile.empty()) throw InputError(s, "", "", expected + "; not found");
   throw InputError(contextFile, key, "\"" + s + "\"", expected);
 }
 
-LensSystem loadLens(const std::string& pathOrName, const LensLoadOptions& opt) {
-  const std::string path = resolveLensPath(pathOrName);
+namespace {
+
+LensSystem parseLensFile(const std::string& path, const LensLoadOptions& opt) {
   if (isFileKind(path, FileKind::Json)) {
     Json j = readJsonFile(path);
     return parseLensJson(JsonObject(j, path, ""), opt);
   }
-  checkInputFile(path);
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "", "a readable lens file (cannot open it)");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parsePbrtLens(ss.str(), path, opt);
+  const std::string bytes = readInputFile(path);
+  if (isFileKind(path, FileKind::Zmx)) return parseZmxLens(bytes, path, opt);
+  return parsePbrtLens(bytes, path, opt);
+}
+
+}  // namespace
+
+void addGlassRangeWarnings(LensSystem& lens) {
+  LensDesignInfo design = lens.design();
+  std::vector<double> used = {kLensVisibleMinNm, kLensVisibleMaxNm};
+  for (double nm : design.wavelengthsNm) used.push_back(nm);
+  std::set<std::string> seen;
+  for (const LensSurface& s : lens.surfaces()) {
+    const auto* g = dynamic_cast<const CatalogGlassIor*>(s.medium.get());
+    if (!g || !seen.insert(s.mediumName).second) continue;
+    const double lo = *std::min_element(used.begin(), used.end()), hi = *std::max_element(used.begin(), used.end());
+    if (g->glass().covers(lo * 1e-3) && g->glass().covers(hi * 1e-3)) continue;
+    design.warnings.push_back("glass " + s.mediumName + ": its catalogue data cover " + formatNumber(g->glass().minUm * 1e3) +
+                              "-" + formatNumber(g->glass().maxUm * 1e3) + " nm, the lens is used at " + formatNumber(lo) +
+                              "-" + formatNumber(hi) + " nm; the formula is extrapolated there");
+  }
+  lens.setDesign(std::move(design));
+}
+
+LensSystem loadLens(const std::string& pathOrName, const LensLoadOptions& opt) {
+  LensSystem lens = parseLensFile(resolveLensPath(pathOrName), opt);
+  addGlassRangeWarnings(lens);
+  return lens;
 }
 
 LensSystem parsePbrtLens(const std::string& text, const std::string& file, const LensLoadOptions& opt) {
@@ -224,6 +251,10 @@ LensSystem parseLensJson(const JsonObject& o, const LensLoadOptions& opt) {
     r.thicknessMm = s.number("thickness_mm", 0.0) * scale;
     r.apertureMm = s.number("aperture_mm") * scale;
     r.conic = s.number("conic", 0.0);
+    if (s.has("asphere")) {  // terms on r^2, r^4, ...: a_i scales as length^(1-2i)
+      r.asphere = s.numbers("asphere");
+      for (size_t i = 0; i < r.asphere.size(); ++i) r.asphere[i] *= std::pow(scale, -1.0 - 2.0 * double(i));
+    }
     if (s.has("glass")) readGlass(s, r);
     if (r.isStop && r.medium) s.fail("glass", jsonValueText(s.raw("glass")), "air after the stop (a stop is a flat opening in air)");
     s.rejectUnknown();
@@ -269,6 +300,9 @@ std::string lensToPbrtText(const LensSystem& lens) {
   out << "# radius\tthickness\tN\taperture(diameter)\n";
   char buf[160];
   for (const auto& s : lens.surfaces()) {
+    if (s.isAsphere() || s.conic != 0.0)
+      throw InputError(lens.file(), s.source, s.isAsphere() ? "an even asphere" : "conic " + formatNumber(s.conic),
+                       "spherical surfaces (the pbrt lens format has no conic or aspheric terms)");
     double nd = s.isStop || !s.medium ? (s.isStop ? 0.0 : 1.0) : double(s.medium->n(float(kLensReferenceLambdaNm)));
     std::snprintf(buf, sizeof buf, "%.10g\t%.10g\t%.10g\t%.10g\n", s.radiusMm, s.thicknessMm, nd, s.apertureMm);
     out << buf;

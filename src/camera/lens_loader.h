@@ -34,12 +34,20 @@ struct LensLoadOptions {
   double abbeNumber = 50.0;  // used with PbrtDispersion::Abbe
 };
 
-// A lens by file path (.dat or .json; relative paths through dataPath) or by catalog name
-// under optics/lenses/ (name.json, then name.dat). The result is validated.
+// The visible band a camera lens is used over (the display's primaries emit within it).
+constexpr double kLensVisibleMinNm = 380.0, kLensVisibleMaxNm = 780.0;
+
+// A lens by file path (.json, .zmx or .dat; relative paths through dataPath) or by catalog name
+// under optics/lenses/ (name.json, then name.zmx, then name.dat). The result is validated, and
+// its design().warnings name any catalogue glass used beyond the wavelengths its data cover.
 LensSystem loadLens(const std::string& pathOrName, const LensLoadOptions& opt = {});
 // The file a name or path refers to; InputError naming `context` and `key` if none exists.
 std::string resolveLensPath(const std::string& pathOrName, const std::string& contextFile = "",
                             const std::string& key = "lens");
+
+// Adds a warning for each catalogue glass whose data do not cover the visible band and the
+// lens's design wavelengths.
+void addGlassRangeWarnings(LensSystem& lens);
 
 // Parsers on text already read; `file` is used in messages. Both validate.
 LensSystem parsePbrtLens(const std::string& text, const std::string& file, const LensLoadOptions& opt = {});

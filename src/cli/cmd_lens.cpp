@@ -26,7 +26,7 @@ void addLensCommand(CLI::App& app) {
       "info",
       "Print EFL, BFL, FFL, f-number, entrance and exit pupils and principal planes, found by real ray tracing");
   info->add_option("FILE", opts->file,
-                   "Lens file (pbrt-v4 .dat or inim .json) or a catalog name under optics/lenses/ (e.g. dgauss.50mm)")
+                   "Lens file (inim .json, Zemax .zmx or pbrt-v4 .dat) or a catalog name under optics/lenses/ (e.g. dgauss.50mm)")
       ->required();
   addSetting(info, "json", opts->json);
   addSetting(info, "thickness_convention", opts->convention);

@@ -24,7 +24,7 @@ const std::vector<Command>& commands() {
       {"train", "Train a voxel-grid radiance field (density + spherical-harmonic colour, Adam, TV, coarse to fine) from a posed photo dataset, on the CPU", addTrainCommand},
       {"eval", "Held-out PSNR and SSIM of a trained radiance field, and its rendered views", addEvalCommand},
       {"compare", "Image metrics of A against B: PSNR, SSIM (Wang et al. 2004, 11x11 Gaussian, sigma 1.5) and CIEDE2000 (mean, 95th percentile, max)", addCompareCommand},
-      {"lens", "Camera lens prescriptions (optics/lenses/*.dat, *.json)", addLensCommand},
+      {"lens", "Camera lens prescriptions (optics/lenses/*.json, *.zmx, *.dat)", addLensCommand},
       {"sweep", "Design sweeps: vary display, MLA, panel, placement or run settings over a grid, run every point (locally or as a Slurm job array) and report the best design and its tolerances", addSweepCommand},
       {"bench", "Speed benchmarks (Google Benchmark) with ratios measured in one run", addBenchCommand},
   };

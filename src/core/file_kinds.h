@@ -15,7 +15,7 @@ namespace inim {
 
 // One kind per extension family; what a kind holds depends on where it is read (a .json is
 // a scene, a display or a run file by the key that names it).
-enum class FileKind { Json, Inimrf, Ply, Splat, Exr, Png, Hdr, Tiff, Pfm, Npy, Txt, Irays, Sdf, Dat, Cube, Clf };
+enum class FileKind { Json, Inimrf, Ply, Splat, Exr, Png, Hdr, Tiff, Pfm, Npy, Txt, Irays, Sdf, Dat, Cube, Clf, Zmx, Agf };
 
 struct FileKindInfo {
   FileKind kind;
