@@ -43,6 +43,7 @@ void addEiaCommand(CLI::App& app) {
   addSetting(cmd, "out", o->e.out)->required();
   addSetting(cmd, "png", o->e.png);
   addSetting(cmd, "sdf", o->e.sdf);
+  addSetting(cmd, "zemax_model", o->e.zemaxModel);
   addSetting(cmd, "triad_wavelengths", o->given.triads);
   addPlacementOptions(cmd, o->place);
   addSetting(cmd, "run", o->run);

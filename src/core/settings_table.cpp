@@ -141,6 +141,9 @@ std::vector<SettingInfo> synthesisSettings() {
       text("png", "", "Encoded PNG (default: beside --out, same name, .png)"),
       text("png", "triads form", "Also an encoded PNG (the panel's EOTF)"),
       text("sdf", "", "Also write the triads (3 rays per display ray) as a Zemax SDF source file"),
+      text("zemax_model", "",
+           "With --sdf: also write the paper's non-sequential OpticStudio model (.zmx): the SDF as a source file "
+           "object and a colour detector sized and pixelled as the EIA at the display's gap"),
       text("sdf", "triads form", "Zemax spectral source file (.sdf)"),
       // rays
       number("gap_mm", "rays", 1e-3, 1000, "Generate at this panel gap instead of generation_gap_mm"),

@@ -14,6 +14,7 @@
 #include "core/file_kinds.h"
 #include "core/progress.h"
 #include "rays/pinhole_rays.h"
+#include "triads/zemax_nsc_model.h"
 
 namespace inim {
 
@@ -26,6 +27,11 @@ std::string checkOutputs(const EiaRunSettings& s) {
   requireFileKind(png, "png", {FileKind::Png}, "a PNG file name (.png)");
   if (!s.preview.empty()) requireFileKind(s.preview, "preview", {FileKind::Png}, "a PNG file name (.png)");
   if (!s.sdf.empty()) requireFileKind(s.sdf, "sdf", {FileKind::Sdf, FileKind::Dat}, "a Zemax source file name (.sdf or .dat)");
+  if (!s.zemaxModel.empty()) {
+    requireFileKind(s.zemaxModel, "zemax_model", {FileKind::Zmx}, "a Zemax file name (.zmx)");
+    if (s.sdf.empty())
+      throw InputError("", "zemax_model", "\"" + s.zemaxModel + "\"", "--sdf as well (the model reads the SDF)");
+  }
   return png;
 }
 
@@ -55,6 +61,9 @@ void writeOutputs(const EiaRunSettings& s, EiaRunResult& r, const Field& field, 
     r.triads = writeTriadSdf(sdfTmp, realRays ? *realRays : generatePinholeRays(r.layout), r.synthesis.drive,
                              r.triadWavelengths, to, &progress);
     progress.finish();
+    if (!s.zemaxModel.empty())
+      writeZemaxNscModel(outputs.add(s.zemaxModel),
+                         zemaxNscModelFor(r.layout, s.sdf, r.triads, r.triadWavelengths.nm, r.display.name));
   }
   for (auto& w : writes) w.get();  // rethrows a writer's failure (the temporaries are removed)
   outputs.commit();
@@ -157,6 +166,7 @@ std::string summaryText(const EiaRunResult& r, const EiaRunSettings& s) {
   if (!s.sdf.empty())
     t += formatText(", %s (%llu triad rays at %s/%s/%s nm)", s.sdf.c_str(), (unsigned long long)r.triads,
                 formatNumber(tw.nm[0]).c_str(), formatNumber(tw.nm[1]).c_str(), formatNumber(tw.nm[2]).c_str());
+  if (!s.zemaxModel.empty()) t += ", " + s.zemaxModel + " (Zemax NSC model reading it)";
   return t + "\n";
 }
 

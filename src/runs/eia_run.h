@@ -40,6 +40,7 @@ struct EiaRunSettings {
   std::string triadWavelengths = "panel";
   std::string triadWavelengthsKey = "triad_wavelengths";  // the setting a bad value is reported as
   std::string out, png, preview, sdf;   // EXR; PNG ("": beside it); optional preview and SDF
+  std::string zemaxModel;               // optional, with sdf: the NSC model (.zmx) reading it
 };
 
 struct EiaRunResult {

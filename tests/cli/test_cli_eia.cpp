@@ -20,6 +20,7 @@
 #include "cli/cli_helpers.h"
 #include "cli/run_cli.h"
 #include "core/image.h"
+#include "core/input_file.h"
 #include "display/display.h"
 #include "display/ei_layout.h"
 #include "rays/pinhole_rays.h"
@@ -464,4 +465,25 @@ TEST(CliEia, ACurvedDisplayRunsFromEiaToViewAndRefusesWhatItCannot) {
   expectBadInput("eia --display " + curved("tight.json", R"({"shape": "cylinder", "radius_mm": -6})") + " --out " + out,
                  {"stack.curvature.radius_mm", "-6"}, {out});
 
+}
+
+// The paper's Zemax model beside the SDF: written with it, naming it, as OpticStudio's UTF-16;
+// refused without --sdf or with another extension, before any work.
+TEST(CliTriads, ZemaxModelBesideTheSdf) {
+  const std::string eia = path("nsc.exr"), sdf = path("nsc.sdf"), zmx = path("nsc_model.zmx");
+  const std::string args = "eia --display " + smallDisplay() + " --scene " + data("scenes/paper-fig7.json") + " --quiet --out " + eia;
+  Result r = run(args + " --sdf " + sdf + " --zemax-model " + zmx);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string bytes = readInputFile(zmx);
+  ASSERT_GE(bytes.size(), 2u);
+  EXPECT_EQ(bytes.substr(0, 2), "\xFF\xFE");
+  std::string ascii;
+  for (size_t i = 2; i < bytes.size(); i += 2) ascii += bytes[i];
+  EXPECT_NE(ascii.find("NSOH NSC_SFIL 0 0 nsc.sdf"), std::string::npos);
+  EXPECT_NE(ascii.find("NSOH NSC_DETC"), std::string::npos);
+  const std::string eia2 = path("nsc2.exr"), zmx2 = path("nsc2.zmx");
+  const std::string args2 = "eia --display " + smallDisplay() + " --scene " + data("scenes/paper-fig7.json") + " --quiet --out " + eia2;
+  expectBadInput(args2 + " --zemax-model " + zmx2, {"--zemax-model", "--sdf"}, {eia2, zmx2});
+  expectBadInput(args2 + " --sdf " + path("nsc2.sdf") + " --zemax-model " + path("nsc2.txt"), {"--zemax-model", ".zmx"},
+                 {eia2, path("nsc2.sdf")});
 }
