@@ -61,6 +61,7 @@ void registerFig11Benchmarks();
 void registerSplatBenchmarks(double minTime);
 void registerSceneBenchmarks();
 void registerMlaBenchmarks(double minTime);
+void registerLensBenchmarks(double minTime);
 void registerPlaceBenchmarks(const RadianceBenchSettings& model, double minTime);
 void printFig11BenchResults();
 void registerReferenceBenchmarks();

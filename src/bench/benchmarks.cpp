@@ -43,6 +43,7 @@ void printRatios(std::map<std::string, double>& rps) {
   ratio("mla/stack-one-layer", "mla/real-one-layer");
   ratio("mla/stack-two-layers", "mla/real-one-layer");
   ratio("eia/two-layers-traced-chief-rays", "eia/one-layer-pinhole-rays");
+  ratio("lens/trace-even-asphere", "lens/trace-spherical");
 }
 
 }  // namespace
@@ -57,6 +58,7 @@ void runBenchmarks(const BenchSettings& settings) {
   bench::registerSplatBenchmarks(settings.minTime);
   bench::registerSceneBenchmarks();
   bench::registerMlaBenchmarks(settings.minTime);
+  bench::registerLensBenchmarks(settings.minTime);
   bench::registerPlaceBenchmarks(settings.radiance, settings.minTime);
   // Debian builds libbenchmark without NDEBUG, so it prints a DEBUG warning; inim itself is a
   // Release build (see the header line below).

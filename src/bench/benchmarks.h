@@ -34,6 +34,10 @@
 //   mla/real-one-layer, mla/stack-one-layer, mla/stack-two-layers  camera rays to the panel
 //                          through the default MLA (exact tracer; stack tracer) and a two-layer
 //                          stack; ratios against the first; target: two layers within 2x
+//   lens/read-zmx-30-surfaces+schott  a 30-surface .zmx lens and the SCHOTT catalogue read;
+//                          target < 50 ms together
+//   lens/trace-even-asphere, lens/trace-spherical  rays through the AL2520-A asphere and through
+//                          it made spherical; target: the asphere within 1.3x
 //   radiance/train-lego    train on the Lego scene (when its folder is given) at 200 x 200, every
 //                          8th view held out; reports the held-out PSNR; target >= 28 dB within
 //                          10 minutes
