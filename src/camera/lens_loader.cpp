@@ -251,9 +251,12 @@ LensSystem parseLensJson(const JsonObject& o, const LensLoadOptions& opt) {
     r.thicknessMm = s.number("thickness_mm", 0.0) * scale;
     r.apertureMm = s.number("aperture_mm") * scale;
     r.conic = s.number("conic", 0.0);
-    if (s.has("asphere")) {  // terms on r^2, r^4, ...: a_i scales as length^(1-2i)
-      r.asphere = s.numbers("asphere");
-      for (size_t i = 0; i < r.asphere.size(); ++i) r.asphere[i] *= std::pow(scale, -1.0 - 2.0 * double(i));
+    if (s.has("asphere")) {
+      // [a4, a6, ...] as a stack's lens array takes them; the term on r^(2j) scales as
+      // length^(1-2j). Internally the list starts at r^2 (Zemax's PARM 1), here 0.
+      const std::vector<double> terms = s.numbers("asphere");
+      r.asphere.assign(1, 0.0);
+      for (size_t i = 0; i < terms.size(); ++i) r.asphere.push_back(terms[i] * std::pow(scale, -3.0 - 2.0 * double(i)));
     }
     if (s.has("glass")) readGlass(s, r);
     if (r.isStop && r.medium) s.fail("glass", jsonValueText(s.raw("glass")), "air after the stop (a stop is a flat opening in air)");

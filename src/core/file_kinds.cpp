@@ -24,7 +24,8 @@ const std::vector<FileKindInfo>& fileKinds() {
        "a pbrt-style lens prescription; written by inim triads, a Zemax source file"},
       {FileKind::Cube, "3D LUT (.cube)", {".cube"}, "colour corrections"},
       {FileKind::Clf, "Common LUT Format", {".clf"}, "colour corrections: matrix, then 3D LUT"},
-      {FileKind::Zmx, "Zemax lens file", {".zmx"}, "sequential lens prescriptions as lens vendors publish them"},
+      {FileKind::Zmx, "Zemax lens file", {".zmx"},
+       "sequential lens prescriptions as lens vendors publish them; the NSC model inim eia writes"},
       {FileKind::Agf, "Zemax glass catalogue", {".agf"}, "glass makers' dispersion data (spectra/glass/)"},
   };
   return kinds;

@@ -6,6 +6,7 @@
 
 #include "camera/even_asphere.h"
 #include "camera/lens_analysis.h"
+#include "camera/lens_loader.h"
 #include "camera/lens_system.h"
 #include "expect_input_error.h"
 
@@ -145,7 +146,7 @@ TEST(EvenAsphere, LensTracesThroughTheAsphere) {
   ASSERT_TRUE(lens.trace(r, 587.56, TraceDirection::ObjectToImage, {}, &path).ok());
   // The hit on the front surface lies on its sag.
   EXPECT_NEAR(path[0].p.z, lens.sag(0, 3.0), 1e-12);
-  EXPECT_NEAR(lens.sag(0, 3.0), kTerms.empty() ? 0.0 : 9.0 / (10.0 * (1.0 + std::sqrt(1.0 - 0.09))) + 5e-4 * 81.0 - 2e-6 * 729.0,
+  EXPECT_NEAR(lens.sag(0, 3.0), 9.0 / (10.0 * (1.0 + std::sqrt(1.0 - 0.09))) + 5e-4 * 81.0 - 2e-6 * 729.0,
               1e-12);
 }
 
@@ -155,4 +156,19 @@ TEST(EvenAsphere, SagUndefinedWithinTheApertureIsRefused) {
   InputError e = expectInputError([] { singlet(6.0, {0.0, 1e-4}, 3.0); });
   EXPECT_NE(std::string(e.what()).find("surfaces[0].aperture_mm"), std::string::npos) << e.what();
   EXPECT_NE(std::string(e.what()).find("3 mm"), std::string::npos) << e.what();
+}
+
+// A JSON lens's "asphere" lists the terms from r^4 up, as a display stack's lens array does, and
+// its "scale" scales the surface: sag(scale r) = scale sag(r).
+TEST(EvenAsphere, JsonTermsStartAtR4AndScaleWithTheLens) {
+  auto lens = [](double scale) {
+    Json j = Json::parse(R"({"scale": )" + std::to_string(scale) + R"(, "surfaces": [
+      {"radius_mm": 10, "asphere": [5e-4, -2e-6], "thickness_mm": 4, "aperture_mm": 8, "glass": "N-BK7"},
+      {"radius_mm": -20, "thickness_mm": 0.5, "aperture_mm": 8},
+      {"stop": true, "thickness_mm": 15, "aperture_mm": 6}]})");
+    return parseLensJson(JsonObject(j, "asphere.json", ""));
+  };
+  const LensSystem one = lens(1.0), two = lens(2.0);
+  EXPECT_NEAR(one.sag(0, 3.0), 9.0 / (10.0 * (1.0 + std::sqrt(1.0 - 0.09))) + 5e-4 * 81.0 - 2e-6 * 729.0, 1e-12);
+  EXPECT_NEAR(two.sag(0, 6.0), 2.0 * one.sag(0, 3.0), 1e-12);
 }

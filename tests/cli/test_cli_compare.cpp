@@ -262,3 +262,40 @@ TEST(CliLens, BadInputIsRejected) {
   EXPECT_EQ(r.status, 2) << r.output;
   expectMentions(r, {"--wavelength-nm", "2000"});
 }
+
+// A vendor's .zmx lens through the binary: the surfaces as read and the model-glass warning; a
+// damaged copy exits 2 naming the file, the line and the value.
+TEST(CliLens, ZemaxFilesAndTheirBadCopies) {
+  CliResult r = runInim("lens info " + data("tests/data/zmx/ACL3026U.zmx"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  expectMentions(r, {"EFL", "conic -0.6301", "a4 5.513e-06", "Warning: SURF 2 (line 78): GLAS B270"});
+  r = runInim("lens info " + data("tests/data/zmx/AC254-050-A.zmx") + " --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NEAR(parse(r)["efl_mm"].get<double>(), 50.0, 0.005 * 50.0);
+
+  std::ifstream in(data("tests/data/zmx/LA1131-A.zmx"), std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto damaged = [&](const std::string& name, const std::string& from, const std::string& to) {
+    std::string t = text;
+    t.replace(t.find(from), from.size(), to);
+    const std::string f = dir().file(name);
+    std::ofstream(f, std::ios::binary) << t;
+    return f;
+  };
+  struct Case {
+    std::string file;
+    std::vector<std::string> mentions;
+  };
+  const std::vector<Case> cases = {
+      {damaged("unit.zmx", "UNIT MM", "UNIT FT"), {"unit.zmx", "line 7: UNIT", "\"FT\""}},
+      {damaged("glass.zmx", "GLAS N-BK7 0 0 0 0", "GLAS N-BK99 0 0 0 0"), {"glass.zmx", "GLAS (line 76)", "N-BK99"}},
+      {damaged("garbled.zmx", "DISZ 5.34", "DISZ 5..34"), {"garbled.zmx", "line 75: DISZ", "5..34"}},
+      {damaged("truncated.zmx", text.substr(text.find("SURF 1")), ""), {"truncated.zmx", "SURF", "truncated"}},
+      {damaged("toroid.zmx", "SURF 2\r\n  TYPE STANDARD", "SURF 2\r\n  TYPE TOROIDAL"), {"toroid.zmx", "SURF 2", "TYPE", "TOROIDAL"}},
+  };
+  for (const Case& c : cases) {
+    r = runInim("lens info " + c.file);
+    EXPECT_EQ(r.status, 2) << c.file << ": " << r.output;
+    for (const std::string& m : c.mentions) EXPECT_NE(r.output.find(m), std::string::npos) << m << " in: " << r.output;
+  }
+}
