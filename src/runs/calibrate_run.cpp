@@ -23,6 +23,9 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 void validate(const CalibrateSettings& s) {
   if (s.outDir.empty()) throw InputError("", "out", "\"\"", "an output folder");
+  // Checked before the characterisation's minutes of rendering, not when writing.
+  if (fs::exists(s.outDir) && !fs::is_directory(s.outDir))
+    throw InputError("", "out", "\"" + s.outDir + "\"", "an output folder (this names an existing file)");
   if (!(s.angleDeg >= 0.0 && s.angleDeg < 90.0))
     throw InputError("", "angle_deg", formatNumber(s.angleDeg), "an angle in [0, 90) degrees");
   if (s.poses.empty()) throw InputError("", "poses", "none", "at least one of centre, left, right, top, bottom");
@@ -290,6 +293,7 @@ void writeTables(OutputSet& out, const fs::path& dir, const CalibrateResult& r) 
   for (const VerificationRow& v : r.uncalibrated) add(v);
   for (const CorrectionReport& c : r.corrections)
     for (const VerificationRow& v : c.rows) add(v);
+  for (const VerificationRow& v : r.exportedRows) add(v);
   writeCsv(out.add((dir / "verification.csv").string()),
            {"pose", "correction", "scope", "in_gamut_count", "in_gamut_mean", "in_gamut_p95", "in_gamut_max",
             "out_of_gamut_count", "out_of_gamut_mean", "out_of_gamut_max"},
@@ -330,14 +334,16 @@ CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserv
   r.fitSeconds = since(t);
 
   t = Clock::now();
-  std::vector<VerificationRow> exported;
+  std::vector<VerificationRow>& exported = r.exportedRows;
   const auto sets = holdOutSets(r);
   for (const PoseChain& c : r.chains)
     exported.push_back(verify(r.path, r.path.corrected(r.exported), c, sets, r.chosen + " (exported LUT)", "all poses"));
   std::string dominant;
   Json& j = r.json;
   j["settings"] = settingsJson(s, r.path, l);
+  // The panel the EIAs are made for, and the one shown (they differ with --assumed-display).
   j["panel"] = panelJson(r.path.panel);
+  j["shown_panel"] = panelJson(r.path.shownPanel);
   for (const PoseChain& c : r.chains) j["poses"][c.name()] = poseJson(c);
   j["pose_order"] = s.poses;
   j["stages"] = stagesJson(r.stages, dominant);

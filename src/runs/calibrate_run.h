@@ -64,6 +64,7 @@ struct CalibrateResult {
   std::vector<CorrectionReport> corrections;
   std::string chosen;                          // the exported model
   std::shared_ptr<const Lut3d> exported;       // the chosen model sampled into the exported LUT
+  std::vector<VerificationRow> exportedRows;   // per pose, through the exported LUT
   Json cameraSide;                             // camera RGB -> XYZ models and their errors
   double maxDirectCheckError = 0.0;            // relative, direct render against the linear model
   CalibrationFiles files;

@@ -57,6 +57,14 @@ TEST(CalibrateRun, WritesEveryFileAndTheHeadlineMetrics) {
   EXPECT_TRUE(r.json["holdout"]["per_pose"]["right"]["in_gamut"].contains("de2000_mean_after"));
   EXPECT_GT(in["count"].get<int>(), 20);
   EXPECT_LE(in["de2000_mean_after"].get<double>(), in["de2000_mean_before"].get<double>() + 0.05);
+  // verification.csv holds every row calibration.json does, the exported LUT's included.
+  std::ifstream csv(fs::path(r.files.cube).parent_path() / "verification.csv");
+  int lines = -1, exportedLines = 0;  // less the header
+  for (std::string line; std::getline(csv, line);) ++lines, exportedLines += line.find("(exported LUT)") != std::string::npos;
+  EXPECT_EQ(size_t(lines), r.json["verification"].size());
+  EXPECT_EQ(exportedLines, 2);  // one per pose
+  // Both panels: the one the EIAs are made for and the one shown (here the same display).
+  EXPECT_EQ(r.json["panel"], r.json["shown_panel"]);
 }
 
 TEST(CalibrateRun, LinearChainModelMatchesADirectRender) { EXPECT_LT(quickRun().maxDirectCheckError, 1e-5); }
@@ -134,6 +142,8 @@ TEST(CalibrateRun, BadSettingsAreRefusedBeforeAnyOutput) {
   const std::string csv = fixtures::scratchPath("patches_bad.csv");
   fixtures::writeBytes(csv, "name,R,G,B\nred,1,0,0\n");
   refused([&](CalibrateSettings& s) { s.patchCsv = csv; }, "columns");
+  // --out naming an existing file: refused with the settings, before the characterisation.
+  refused([&](CalibrateSettings& s) { s.outDir = csv; }, "out");
 }
 
 }  // namespace
