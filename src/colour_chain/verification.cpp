@@ -27,6 +27,10 @@ PatchOutcome measurePatch(const ColourPath& path, const FieldToDrive& toDrive, c
   o.deltaE = deltaE2000(o.shown, o.target, chain.labWhite());
   o.cameraDeltaE = deltaE2000(o.cameraShown, o.cameraTarget, chain.labWhite());
   o.inGamut = chain.inGamut(o.target);
+  // The same tolerance as PoseChain::inGamut, on the assumed panel's drive before mapping.
+  GamutStats stats;
+  path.uncalibrated().fromXyz(Vec3(representableInField(patch.xyz, path.fieldSpace)), stats);
+  o.inAssumedGamut = stats.minChannel >= -2e-3 && stats.maxChannel <= 1.0 + 2e-3;
   return o;
 }
 
@@ -118,12 +122,16 @@ std::vector<StageRow> stageTable(const ColourPath& path, const std::vector<PoseC
 VerificationRow verify(const ColourPath& path, const FieldToDrive& toDrive, const PoseChain& chain,
                        const std::vector<const PatchSet*>& holdOut, const std::string& correction,
                        const std::string& scope) {
-  VerificationRow r{chain.response().pose.name, correction, scope, {}, {}, {}, {}};
-  std::vector<double> in, out, camIn, mapping;
+  VerificationRow r{chain.response().pose.name, correction, scope, {}, {}, {}, {}, {}};
+  std::vector<double> in, out, camIn, mapping, outsideAssumed;
   const FieldToDrive uncal = path.uncalibrated();
   for (const PatchSet* set : holdOut)
     for (const Patch& p : set->patches) {
       const PatchOutcome o = measurePatch(path, toDrive, chain, p);
+      if (o.inGamut && !o.inAssumedGamut) {
+        outsideAssumed.push_back(o.deltaE);
+        continue;
+      }
       if (o.inGamut) {
         in.push_back(o.deltaE);
         camIn.push_back(o.cameraDeltaE);
@@ -136,6 +144,7 @@ VerificationRow verify(const ColourPath& path, const FieldToDrive& toDrive, cons
   r.outOfGamut = summarise(out);
   r.cameraInGamut = summarise(camIn);
   r.outOfGamutMapping = summarise(mapping);
+  r.outsideAssumedGamut = summarise(outsideAssumed);
   return r;
 }
 

@@ -34,6 +34,7 @@ struct PatchOutcome {
   Vec3d cameraTarget{0.0}, cameraShown{0.0};  // camera XYZ (the sensor's own 3x3)
   double deltaE = 0.0, cameraDeltaE = 0.0;    // CIEDE2000, reference white: the pose's white
   bool inGamut = true;                        // the pose can show the target
+  bool inAssumedGamut = true;                 // the panel the EIA is made for can encode it unmapped
 };
 PatchOutcome measurePatch(const ColourPath& path, const FieldToDrive& toDrive, const PoseChain& chain,
                           const Patch& patch);
@@ -50,6 +51,9 @@ struct VerificationRow {
   std::string pose, correction, scope;  // scope: "all poses", "this pose" or "" (uncalibrated)
   DeltaESummary inGamut, outOfGamut, cameraInGamut;
   DeltaESummary outOfGamutMapping;      // the gamut mapping's own error on those colours
+  // Colours the shown panel can show but the assumed one cannot encode (the EIA is made for a
+  // panel other than the one shown): neither in- nor out-of-gamut, reported on their own.
+  DeltaESummary outsideAssumedGamut;
 };
 VerificationRow verify(const ColourPath& path, const FieldToDrive& toDrive, const PoseChain& chain,
                        const std::vector<const PatchSet*>& holdOut, const std::string& correction,

@@ -187,6 +187,7 @@ Json verificationJson(const VerificationRow& v) {
               {"in_gamut", deJson(v.inGamut)},
               {"out_of_gamut", deJson(v.outOfGamut)},
               {"out_of_gamut_mapping", deJson(v.outOfGamutMapping)},
+              {"outside_assumed_gamut", deJson(v.outsideAssumedGamut)},
               {"camera_in_gamut", deJson(v.cameraInGamut)}};
 }
 
@@ -207,6 +208,7 @@ Json holdoutJson(const CalibrateResult& r, const std::vector<VerificationRow>& e
     Json pose{{"in_gamut", beforeAfter(r.uncalibrated[i].inGamut, exported[i].inGamut)},
               {"out_of_gamut", beforeAfter(r.uncalibrated[i].outOfGamut, exported[i].outOfGamut)},
               {"out_of_gamut_mapping", deJson(r.uncalibrated[i].outOfGamutMapping)},
+              {"outside_assumed_gamut", beforeAfter(r.uncalibrated[i].outsideAssumedGamut, exported[i].outsideAssumedGamut)},
               {"label", r.chains[i].response().pose.label}};
     if (i == 0) h["in_gamut"] = pose["in_gamut"], h["out_of_gamut"] = pose["out_of_gamut"], h["pose"] = r.chains[i].name();
     h["per_pose"][r.chains[i].name()] = pose;
@@ -288,7 +290,9 @@ void writeTables(OutputSet& out, const fs::path& dir, const CalibrateResult& r) 
   auto add = [&](const VerificationRow& v) {
     rows.push_back({v.pose, v.correction, v.scope, std::to_string(v.inGamut.count), formatNumber(v.inGamut.mean, "%.4f"),
                     formatNumber(v.inGamut.p95, "%.4f"), formatNumber(v.inGamut.max, "%.4f"), std::to_string(v.outOfGamut.count),
-                    formatNumber(v.outOfGamut.mean, "%.4f"), formatNumber(v.outOfGamut.max, "%.4f")});
+                    formatNumber(v.outOfGamut.mean, "%.4f"), formatNumber(v.outOfGamut.max, "%.4f"),
+                    std::to_string(v.outsideAssumedGamut.count), formatNumber(v.outsideAssumedGamut.mean, "%.4f"),
+                    formatNumber(v.outsideAssumedGamut.max, "%.4f")});
   };
   for (const VerificationRow& v : r.uncalibrated) add(v);
   for (const CorrectionReport& c : r.corrections)
@@ -296,7 +300,8 @@ void writeTables(OutputSet& out, const fs::path& dir, const CalibrateResult& r) 
   for (const VerificationRow& v : r.exportedRows) add(v);
   writeCsv(out.add((dir / "verification.csv").string()),
            {"pose", "correction", "scope", "in_gamut_count", "in_gamut_mean", "in_gamut_p95", "in_gamut_max",
-            "out_of_gamut_count", "out_of_gamut_mean", "out_of_gamut_max"},
+            "out_of_gamut_count", "out_of_gamut_mean", "out_of_gamut_max", "outside_assumed_gamut_count",
+            "outside_assumed_gamut_mean", "outside_assumed_gamut_max"},
            rows);
 }
 

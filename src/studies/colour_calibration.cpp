@@ -77,7 +77,7 @@ std::string stageTableText(const CalibrateResult& r) {
 
 std::string holdoutTableText(const CalibrateResult& r) {
   std::string t = "| pose | in gamut | before mean / p95 / max | after mean / p95 / max | out of gamut | before mean | "
-                  "after mean | mapping alone |\n|---|---|---|---|---|---|---|---|\n";
+                  "after mean | mapping alone | outside the assumed panel's gamut only |\n|---|---|---|---|---|---|---|---|---|\n";
   const Json& pp = r.json["holdout"]["per_pose"];
   for (const PoseChain& c : r.chains) {
     const Json& in = pp[c.name()]["in_gamut"];
@@ -87,7 +87,8 @@ std::string holdoutTableText(const CalibrateResult& r) {
          " | " + f2(in["de2000_mean_after"]) + " / " + f2(in["de2000_p95_after"]) + " / " +
          f2(in["de2000_max_after"]) + " | " + std::to_string(out["count"].get<int>()) + " | " +
          f2(out["de2000_mean_before"]) + " | " + f2(out["de2000_mean_after"]) + " | " +
-         f2(pp[c.name()]["out_of_gamut_mapping"]["mean"]) + " |\n";
+         f2(pp[c.name()]["out_of_gamut_mapping"]["mean"]) + " | " +
+         std::to_string(pp[c.name()]["outside_assumed_gamut"]["count"].get<int>()) + " |\n";
   }
   return t + "\n";
 }

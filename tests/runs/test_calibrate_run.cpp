@@ -10,7 +10,9 @@
 #include <fstream>
 
 #include "../calibration/test_functions.h"
+#include "core/output_file.h"
 #include "core/parallel.h"
+#include "display/display.h"
 #include "runs/calibrate_run.h"
 #include "fixtures.h"
 
@@ -65,6 +67,25 @@ TEST(CalibrateRun, WritesEveryFileAndTheHeadlineMetrics) {
   EXPECT_EQ(exportedLines, 2);  // one per pose
   // Both panels: the one the EIAs are made for and the one shown (here the same display).
   EXPECT_EQ(r.json["panel"], r.json["shown_panel"]);
+}
+
+// EIAs made for another panel than the one shown: colours the shown panel can show but the
+// assumed one cannot encode are reported on their own, never in the in-gamut statistic. With one
+// panel there are none.
+TEST(CalibrateRun, ColoursOutsideTheAssumedGamutAreKeptOutOfTheInGamutStatistic) {
+  for (const Json& v : quickRun().json["verification"]) EXPECT_EQ(v["outside_assumed_gamut"]["count"].get<int>(), 0);
+  CalibrateSettings s = quickSettings(fixtures::scratchPath("calibrate_mismatch"));
+  s.displayPath = defaultDisplayPath();  // placeholder primaries, a wider gamut than the OLED's
+  s.assumedDisplayPath = dataPath("optics/displays/paper-prototype-measured-oled.json");
+  s.poses = {"centre"};
+  s.holdOutInGamut = 200, s.holdOutOutOfGamut = 400;
+  const CalibrateResult r = runCalibration(s);
+  const Json& pose = r.json["holdout"]["per_pose"]["centre"];
+  EXPECT_GT(pose["outside_assumed_gamut"]["count"].get<int>(), 0);
+  EXPECT_EQ(pose["in_gamut"]["count"].get<int>() + pose["outside_assumed_gamut"]["count"].get<int>() +
+                pose["out_of_gamut"]["count"].get<int>(),
+            int(r.holdIn.patches.size() + r.holdOut.patches.size()));
+  EXPECT_NE(r.json["panel"], r.json["shown_panel"]);
 }
 
 TEST(CalibrateRun, LinearChainModelMatchesADirectRender) { EXPECT_LT(quickRun().maxDirectCheckError, 1e-5); }
