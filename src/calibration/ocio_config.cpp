@@ -24,6 +24,26 @@ OCIO::ConfigRcPtr editableBaseConfig(const std::string& path) {
   }
 }
 
+// Reference -> (matrix to the panel's drive) -> LUT -> (clamp to [0, 1]).
+OCIO::TransformRcPtr fromReferenceTransform(const OcioColourSpaceSettings& space, OCIO::FileTransformRcPtr file) {
+  OCIO::GroupTransformRcPtr group = OCIO::GroupTransform::Create();
+  if (space.referenceToLutInput) {
+    const std::array<double, 9>& m = *space.referenceToLutInput;
+    const double m44[16] = {m[0], m[1], m[2], 0, m[3], m[4], m[5], 0, m[6], m[7], m[8], 0, 0, 0, 0, 1};
+    OCIO::MatrixTransformRcPtr matrix = OCIO::MatrixTransform::Create();
+    matrix->setMatrix(m44);
+    group->appendTransform(matrix);
+  }
+  group->appendTransform(file);
+  if (space.clampOutput) {
+    OCIO::RangeTransformRcPtr clamp = OCIO::RangeTransform::Create();
+    clamp->setMinInValue(0.0), clamp->setMinOutValue(0.0);
+    clamp->setMaxInValue(1.0), clamp->setMaxOutValue(1.0);
+    group->appendTransform(clamp);
+  }
+  return group;
+}
+
 OCIO::ColorSpaceRcPtr lutColourSpace(const OcioColourSpaceSettings& space) {
   OCIO::FileTransformRcPtr file = OCIO::FileTransform::Create();
   file->setSrc(space.lutFile.c_str());
@@ -33,8 +53,10 @@ OCIO::ColorSpaceRcPtr lutColourSpace(const OcioColourSpaceSettings& space) {
   cs->setFamily("calibration");
   cs->setDescription(space.description.c_str());
   cs->setBitDepth(OCIO::BIT_DEPTH_F32);
-  cs->setTransform(file, space.direction == LutDirection::FromReference ? OCIO::COLORSPACE_DIR_FROM_REFERENCE
-                                                                        : OCIO::COLORSPACE_DIR_TO_REFERENCE);
+  if (space.direction == LutDirection::FromReference)
+    cs->setTransform(fromReferenceTransform(space, file), OCIO::COLORSPACE_DIR_FROM_REFERENCE);
+  else
+    cs->setTransform(file, OCIO::COLORSPACE_DIR_TO_REFERENCE);
   return cs;
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 // Exports a correction for OpenColorIO: a copy of the project's config with one more colour
 // space whose transform reads the exported LUT file, written beside it.
+#include <array>
+#include <optional>
 #include <string>
 
 #include "calibration/lut3d.h"
@@ -17,6 +19,13 @@ struct OcioColourSpaceSettings {
   std::string description = "Colour-corrected panel drive (inim calibration LUT)";
   std::string lutFile;  // a file name beside the config, found through search_path "."
   LutDirection direction = LutDirection::FromReference;
+  // FromReference only: the matrix taking the config's reference (linear Rec.709) to the LUT's
+  // input, the panel's native drive (row-major 3x3; with the exposure and white gains inim
+  // drives the panel with). Absent: the LUT reads reference values as they are.
+  std::optional<std::array<double, 9>> referenceToLutInput;
+  // FromReference only: clamp the LUT's output to [0, 1], as the panel (and inim) does: a
+  // correction may ask for more than full drive, which no panel shows.
+  bool clampOutput = true;
 };
 
 // Writes `configPath`: the config at `baseConfigPath` (empty: the config ColorSystem uses,

@@ -11,6 +11,7 @@
 #include "core/format.h"
 #include "core/output_file.h"
 #include "core/progress.h"
+#include "spectral/color.h"
 
 namespace fs = std::filesystem;
 
@@ -273,6 +274,21 @@ Json settingsJson(const CalibrateSettings& s, const ColourPath& path, const Load
               {"direct_checks", s.directChecks}};
 }
 
+// The OCIO colour space reads linear Rec.709 (the config's reference): the same matrix as
+// inim's drive (the panel's XYZ -> native drive, exposure and white gains) comes before the LUT.
+OcioColourSpaceSettings ocioSpace(const ColourPath& path) {
+  const FieldToDrive uncal = path.uncalibrated();
+  const Vec3d gains(uncal.gains());
+  glm::dmat3 g(0.0);
+  for (int c = 0; c < 3; ++c) g[c][c] = gains[c];
+  const glm::dmat3 m = g * path.panel.xyzToDrive() * glm::dmat3(ColorSystem::rec709ToXYZ());
+  OcioColourSpaceSettings space;
+  space.referenceToLutInput = std::array<double, 9>{};
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) (*space.referenceToLutInput)[size_t(3 * row + col)] = m[col][row];
+  return space;
+}
+
 Json panelJson(const PanelColor& p) {
   Json prim = Json::array();
   for (int c = 0; c < 3; ++c) prim.push_back({p.primaryXY(c).x, p.primaryXY(c).y});
@@ -373,7 +389,7 @@ CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserv
   OutputSet own;
   OutputSet& out = outputs ? *outputs : own;
   const fs::path dir(s.outDir);
-  r.files = exportCalibration(out, s.outDir, "panel_correction", *r.exported, OcioColourSpaceSettings{});
+  r.files = exportCalibration(out, s.outDir, "panel_correction", *r.exported, ocioSpace(r.path));
   j["files"] = {{"cube", r.files.cube}, {"clf", r.files.clf}, {"ocio", r.files.config}};
   writeTables(out, dir, r);
   writeTextFile(out.add((dir / "calibration.json").string()), j.dump(2) + "\n");

@@ -14,6 +14,7 @@
 #include "core/parallel.h"
 #include "display/display.h"
 #include "runs/calibrate_run.h"
+#include "spectral/color.h"
 #include "fixtures.h"
 
 namespace OCIO = OCIO_NAMESPACE;
@@ -113,6 +114,26 @@ TEST(CalibrateRun, OpenColorIOReadsTheExportedLutsAsInimAppliesThem) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.exported->eval(x)[c], fit[c], 2e-3);
   }
   EXPECT_GT(compared, 50);
+}
+
+// Rec.709 content converted through the exported OCIO config lands on the drive inim itself puts
+// on the panel for that colour (Rec.709 -> the panel's native drive -> the LUT -> clamped).
+TEST(CalibrateRun, TheOcioConfigTakesRec709ContentToInimsCorrectedDrive) {
+  const CalibrateResult& r = quickRun();
+  OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(r.files.config.c_str());
+  OCIO::ConstCPUProcessorRcPtr cpu = config->getProcessor("lin_rec709", "panel_calibrated")->getDefaultCPUProcessor();
+  const FieldToDrive corrected = r.path.corrected(r.exported);
+  int compared = 0;
+  for (const Vec3d& rgb : testing::pseudoRandomColours(80, 0.0, 0.9)) {
+    float px[3] = {float(rgb.x), float(rgb.y), float(rgb.z)};
+    cpu->applyRGB(px);
+    const Vec3d xyz = Vec3d(ColorSystem::rec709ToXYZ() * Vec3(rgb));
+    const Vec3d ours = r.path.driveOf(corrected, xyz);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(px[c], ours[c], 2e-4) << rgb.x << " " << rgb.y << " " << rgb.z;
+    for (int c = 0; c < 3; ++c) EXPECT_TRUE(px[c] >= 0.0f && px[c] <= 1.0f);  // clamped as a panel is driven
+    ++compared;
+  }
+  EXPECT_EQ(compared, 80);
 }
 
 TEST(CalibrateRun, OciochecklutReadsTheCube) {
