@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "cli/commands.h"
+#include "core/error.h"
 #include "cli/options.h"
 #include "runs/calibrate_run.h"
 #include "runs/eia_run.h"
@@ -14,7 +15,7 @@ namespace inim::cli {
 void addCalibrateCommand(CLI::App& app) {
   struct Opts {
     CalibrateSettings s;
-    std::optional<std::string> white, gamut;  // absent: the library's defaults
+    std::optional<std::string> white, gamut, grade;  // absent: the library's defaults
     RunOptions run;
   };
   auto o = std::make_shared<Opts>();
@@ -39,15 +40,22 @@ void addCalibrateCommand(CLI::App& app) {
   addSetting(cmd, "panel_bits", s.panelBits);
   addSetting(cmd, "width", s.render.width);
   addSetting(cmd, "direct_checks", s.directChecks);
+  addSetting(cmd, "grade", o->grade)->default_str("1,3");
   addRunOptions(cmd, o->run, [o] {
     o->run.applySeed(o->s.seed);
     o->run.applySeed(o->s.render.view.seed);
     if (o->white) o->s.whiteBalanceD65 = parseWhiteBalanceD65(*o->white);
     if (o->gamut) o->s.gamut = parseGamut(*o->gamut);
+    if (o->grade) parseGrade(*o->grade, o->s);
     CalibrateObserver observer;
     observer.poseDone = [](const PoseResponse& p) { std::printf("%s", poseResponseText(p).c_str()), std::fflush(stdout); };
     const CalibrateResult r = runCalibration(o->s, observer);
     std::fputs(calibrationSummary(r).c_str(), stdout);
+    if (!r.failedPoses.empty()) {  // the outputs are written; the exit status says the grade was missed
+      std::string poses;
+      for (const std::string& p : r.failedPoses) poses += (poses.empty() ? "" : ", ") + p;
+      throw GradeFailed("the calibration misses its grade at " + poses + " (calibration.json: grade)");
+    }
   });
 }
 

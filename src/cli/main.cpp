@@ -33,6 +33,9 @@ int main(int argc, char** argv) {
       return std::fprintf(stderr, "inim: error: %s\n", unknown.c_str()), inim::kExitBadInput;
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     return std::fprintf(stderr, "inim: error: %s (--help lists the options)\n", e.what()), inim::kExitBadInput;
+  } catch (const inim::GradeFailed& e) {
+    std::fprintf(stderr, "inim: grade failed: %s\n", e.what());
+    return inim::kExitGradeFailed;
   } catch (const inim::InputError& e) {
     std::fprintf(stderr, "inim: error: %s\n", inim::withOutputNames(inim::cli::asCommandLineError(e).what()).c_str());
     return inim::kExitBadInput;

@@ -24,5 +24,13 @@ class InputError : public std::runtime_error {
 
 // Exit status for bad input, as the README promises.
 constexpr int kExitBadInput = 2;
+// Exit status of a run that worked and wrote its outputs but whose result misses the grade it
+// was held to (inim calibrate --grade): distinct from bad input.
+constexpr int kExitGradeFailed = 3;
+
+class GradeFailed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 }  // namespace inim

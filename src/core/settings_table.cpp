@@ -246,6 +246,9 @@ std::vector<SettingInfo> viewSettings() {
       text("assumed_display", "",
            "The display the EIAs are made for, when the panel shown differs from its description (e.g. placeholder "
            "primaries in the file, measured ones in the panel) (default: --display)"),
+      text("grade", "calibrate",
+           "MEAN,MAX: the CIEDE2000 each pose's in-gamut hold-out must meet through the exported correction "
+           "(DisplayCAL's recommended 1,3); a pose that misses it makes the exit status 3; off: no grade"),
       choice("field_space", "", "lin_rec709,display_p3,acescg,spectral", "The field's colour space"),
       number("grid_levels", "", 2, 64, "Levels per channel of the drive grid used to fit"),
       number("holdout", "", 0, kMaxCount, "Hold-out colours from the panel's gamut"),

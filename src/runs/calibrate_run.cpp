@@ -23,6 +23,9 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 void validate(const CalibrateSettings& s) {
+  if (s.gradeMean > 0.0 && !(std::isfinite(s.gradeMean) && std::isfinite(s.gradeMax) && s.gradeMax >= s.gradeMean))
+    throw InputError("", "grade", formatNumber(s.gradeMean) + "," + formatNumber(s.gradeMax),
+                     "finite thresholds MEAN,MAX with MAX >= MEAN > 0");
   if (s.outDir.empty()) throw InputError("", "out", "\"\"", "an output folder");
   // Checked before the characterisation's minutes of rendering, not when writing.
   if (fs::exists(s.outDir) && !fs::is_directory(s.outDir))
@@ -289,6 +292,19 @@ OcioColourSpaceSettings ocioSpace(const ColourPath& path) {
   return space;
 }
 
+// Each pose against the grade, through the exported correction (what a user ships).
+Json gradeJson(const CalibrateSettings& s, CalibrateResult& r) {
+  if (!(s.gradeMean > 0.0)) return Json{{"graded", false}};
+  Json g{{"graded", true}, {"de2000_mean_at_most", s.gradeMean}, {"de2000_max_at_most", s.gradeMax}};
+  for (const VerificationRow& v : r.exportedRows) {
+    const bool pass = v.inGamut.mean <= s.gradeMean && v.inGamut.max <= s.gradeMax;
+    g["per_pose"][v.pose] = {{"de2000_mean", v.inGamut.mean}, {"de2000_max", v.inGamut.max}, {"pass", pass}};
+    if (!pass) r.failedPoses.push_back(v.pose);
+  }
+  g["pass"] = r.failedPoses.empty();
+  return g;
+}
+
 Json panelJson(const PanelColor& p) {
   Json prim = Json::array();
   for (int c = 0; c < 3; ++c) prim.push_back({p.primaryXY(c).x, p.primaryXY(c).y});
@@ -370,6 +386,7 @@ CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserv
   j["stages"] = stagesJson(r.stages, dominant);
   j["dominant_stage"] = dominant;
   j["holdout"] = holdoutJson(r, exported);
+  j["grade"] = gradeJson(s, r);
   for (const VerificationRow& v : r.uncalibrated) j["verification"].push_back(verificationJson(v));
   for (const CorrectionReport& c : r.corrections) {
     Json parameters = c.allPoses->parameters();
@@ -397,6 +414,22 @@ CalibrateResult runCalibration(const CalibrateSettings& s, const CalibrateObserv
   return r;
 }
 
+void parseGrade(const std::string& text, CalibrateSettings& s) {
+  if (text == "off") {
+    s.gradeMean = s.gradeMax = 0.0;
+    return;
+  }
+  const size_t comma = text.find(',');
+  char* end1 = nullptr;
+  char* end2 = nullptr;
+  const std::string a = text.substr(0, comma), b = comma == std::string::npos ? "" : text.substr(comma + 1);
+  const double mean = std::strtod(a.c_str(), &end1), max = std::strtod(b.c_str(), &end2);
+  if (comma == std::string::npos || a.empty() || b.empty() || *end1 || *end2 || !(mean > 0.0) || !(max >= mean) ||
+      !std::isfinite(max))
+    throw InputError("", "grade", "\"" + text + "\"", "MEAN,MAX in CIEDE2000 with MAX >= MEAN > 0 (e.g. 1,3), or off");
+  s.gradeMean = mean, s.gradeMax = max;
+}
+
 std::string calibrationSummary(const CalibrateResult& r) {
   std::string t = "stages (ColorChecker, CIEDE2000 mean / p95 / max, one stage at a time):\n";
   for (const StageRow& s : r.stages)
@@ -418,6 +451,13 @@ std::string calibrationSummary(const CalibrateResult& r) {
     t += "direct renders against the linear chain model: max relative difference " +
          formatNumber(r.maxDirectCheckError, "%.2g") + "\n";
   t += "wrote " + r.files.cube + ", " + r.files.clf + ", " + r.files.config + "\n";
+  const Json& g = r.json["grade"];
+  if (g.value("graded", false)) {
+    t += "grade (exported correction, in-gamut hold-out: mean <= " + formatNumber(g["de2000_mean_at_most"].get<double>()) +
+         ", max <= " + formatNumber(g["de2000_max_at_most"].get<double>()) + "):";
+    for (const auto& [pose, v] : g["per_pose"].items()) t += " " + pose + (v["pass"].get<bool>() ? " pass" : " FAIL");
+    t += "\n";
+  }
   return t;
 }
 

@@ -47,7 +47,13 @@ struct CalibrateSettings {
   int directChecks = 3;                       // patches rendered directly against the linear model
   bool progress = true;                       // a bar over the renders, on a terminal only
   ChainRenderSettings render;
+  // The grade each pose is held to: the exported correction's in-gamut hold-out CIEDE2000 mean
+  // and maximum (DisplayCAL's "recommended" tolerances). gradeMean <= 0: no grade.
+  double gradeMean = 1.0, gradeMax = 3.0;
 };
+
+// "MEAN,MAX" (e.g. "1,3") or "off" into the settings; InputError naming --grade otherwise.
+void parseGrade(const std::string& text, CalibrateSettings& s);
 
 struct CorrectionReport {
   std::string name;                            // correctionName
@@ -69,6 +75,7 @@ struct CalibrateResult {
   double maxDirectCheckError = 0.0;            // relative, direct render against the linear model
   CalibrationFiles files;
   Json json;                                   // calibration.json
+  std::vector<std::string> failedPoses;        // poses that miss the grade (empty: pass, or no grade)
   double characteriseSeconds = 0, fitSeconds = 0, verifySeconds = 0;
 };
 

@@ -105,6 +105,7 @@ TEST(CliCalibrate, SmallRunExportsTheCorrectionThatEiaReads) {
   EXPECT_LE(h.at("de2000_mean_after").get<double>(), 1.0);
   EXPECT_LE(h.at("de2000_max_after").get<double>(), 3.0);
   EXPECT_LE(h.at("de2000_mean_after").get<double>(), h.at("de2000_mean_before").get<double>() + 0.05);
+  EXPECT_TRUE(j.at("grade").at("pass").get<bool>());  // the default grade, 1 and 3: exit status 0 above
   // inim eia reads the exported table and says so.
   const std::string display = path("calibrate_display.json");
   writeText(display, smallDisplayJson(11, 9, 9));
@@ -112,6 +113,25 @@ TEST(CliCalibrate, SmallRunExportsTheCorrectionThatEiaReads) {
   const CliResult e = runInim("eia --display " + display + " --calibration " + cube + " --out " + path("cal_eia.exr"));
   ASSERT_EQ(e.status, 0) << e.output;
   EXPECT_NE(e.output.find("calibration: " + cube + " (3D LUT, 9 nodes per axis"), std::string::npos) << e.output;
+}
+
+// A calibration that misses its grade still writes everything, says which poses failed, and
+// exits 3 (not bad input's 2); the grade is in calibration.json.
+TEST(CliCalibrate, AMissedGradeExitsThreeWithItsOutputsWritten) {
+  const std::string out = path("calibrate_grade");
+  const CliResult r = runInim("calibrate --out " + out +
+                              " --poses centre --width 64 --holdout 20 --holdout-out-of-gamut 5 --lut-size 9"
+                              " --direct-checks 0 --grade 0.0001,0.0002");
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find("inim: grade failed: the calibration misses its grade at centre"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("centre FAIL"), std::string::npos) << r.output;
+  std::ifstream in(fs::path(out) / "calibration.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_FALSE(j.at("grade").at("pass").get<bool>());
+  EXPECT_DOUBLE_EQ(j.at("grade").at("de2000_mean_at_most").get<double>(), 0.0001);
+  EXPECT_TRUE(fs::exists(fs::path(out) / "panel_correction.cube"));
+  expectBadInputWith(runInim, "calibrate --out " + path("calibrate_grade_bad") + " --grade 3,1", {"--grade", "3,1"},
+                     {path("calibrate_grade_bad") + "/calibration.json"});
 }
 
 TEST(CliCalibrate, BadSettingsNameTheirFlagsAndWriteNothing) {
