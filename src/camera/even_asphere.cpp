@@ -31,18 +31,9 @@ double EvenAsphere::sag(double rho) const {
 }
 
 double EvenAsphere::slope(double rho) const {
-  double s = 0.0;
-  if (c != 0.0) {
-    const double arg = 1.0 - (1.0 + k) * c * c * rho;
-    if (arg <= 0.0) return kNaN;
-    s = 0.5 * c / std::sqrt(arg);
-  }
-  if (a) {
-    double poly = 0.0;
-    for (size_t i = a->size(); i-- > 0;) poly = poly * rho + double(i + 1) * (*a)[i];
-    s += poly;
-  }
-  return s;
+  double z, dz;
+  sagAndSlope(rho, z, dz);
+  return dz;
 }
 
 void EvenAsphere::sagAndSlope(double rho, double& z, double& dz) const {

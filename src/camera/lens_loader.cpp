@@ -91,11 +91,11 @@ void addGlassRangeWarnings(LensSystem& lens) {
   LensDesignInfo design = lens.design();
   std::vector<double> used = {kLensVisibleMinNm, kLensVisibleMaxNm};
   for (double nm : design.wavelengthsNm) used.push_back(nm);
+  const double lo = *std::min_element(used.begin(), used.end()), hi = *std::max_element(used.begin(), used.end());
   std::set<std::string> seen;
   for (const LensSurface& s : lens.surfaces()) {
     const auto* g = dynamic_cast<const CatalogGlassIor*>(s.medium.get());
     if (!g || !seen.insert(s.mediumName).second) continue;
-    const double lo = *std::min_element(used.begin(), used.end()), hi = *std::max_element(used.begin(), used.end());
     if (g->glass().covers(lo * 1e-3) && g->glass().covers(hi * 1e-3)) continue;
     design.warnings.push_back("glass " + s.mediumName + ": its catalogue data cover " + formatNumber(g->glass().minUm * 1e3) +
                               "-" + formatNumber(g->glass().maxUm * 1e3) + " nm, the lens is used at " + formatNumber(lo) +

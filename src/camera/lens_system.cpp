@@ -160,7 +160,7 @@ TraceResult LensSystem::traceWithIndices(LensRay& r, const double* nAfter, Trace
     const double c = curvature_[size_t(i)];
     const Vec3d oLocal(r.o.x, r.o.y, r.o.z - z_[size_t(i)]);
     double asphereSlope = 0.0;
-    const double t = s.isAsphere() ? intersectEvenAsphere(oLocal, r.d, s.shape(), kTMin, nullptr, &asphereSlope)
+    const double t = s.isAsphere() ? intersectEvenAsphere(oLocal, r.d, {c, s.conic, &s.asphere}, kTMin, nullptr, &asphereSlope)
                                    : intersectConic(oLocal, r.d, c, s.conic, kTMin);
     if (t < kTMin) {
       res.status = TraceStatus::Missed;

@@ -19,15 +19,24 @@ void appendUtf8(std::string& out, unsigned u) {
   }
 }
 
-bool isUtf8(const std::string& bytes) {
-  for (size_t i = 0; i < bytes.size();) {
-    const unsigned char c = static_cast<unsigned char>(bytes[i]);
-    const size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
-    if (n == 0 || i + n > bytes.size()) return false;
-    for (size_t k = 1; k < n; ++k)
-      if ((static_cast<unsigned char>(bytes[i + k]) >> 6) != 0x2) return false;
-    i += n;
+// The length of the valid UTF-8 sequence at bytes[i] and its code point, or 0 when invalid.
+size_t utf8Sequence(const std::string& bytes, size_t i, unsigned& codePoint) {
+  const unsigned char c = static_cast<unsigned char>(bytes[i]);
+  const size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+  if (n == 0 || i + n > bytes.size()) return 0;
+  codePoint = n == 1 ? c : n == 2 ? (c & 0x1F) : n == 3 ? (c & 0x0F) : (c & 0x07);
+  for (size_t k = 1; k < n; ++k) {
+    const unsigned char t = static_cast<unsigned char>(bytes[i + k]);
+    if ((t >> 6) != 0x2) return 0;
+    codePoint = codePoint << 6 | (t & 0x3F);
   }
+  return n;
+}
+
+bool isUtf8(const std::string& bytes) {
+  unsigned cp = 0;
+  for (size_t i = 0, n; i < bytes.size(); i += n)
+    if ((n = utf8Sequence(bytes, i, cp)) == 0) return false;
   return true;
 }
 
@@ -72,22 +81,15 @@ std::string utf16leWithBom(const std::string& utf8) {
   std::string out = "\xFF\xFE";
   auto unit = [&](unsigned u) { out += char(u & 0xFF), out += char(u >> 8); };
   for (size_t i = 0; i < utf8.size();) {
-    const unsigned char c = static_cast<unsigned char>(utf8[i]);
-    const size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
-    bool valid = n > 0 && i + n <= utf8.size();
-    for (size_t k = 1; valid && k < n; ++k) valid = (static_cast<unsigned char>(utf8[i + k]) >> 6) == 0x2;
-    if (!valid) {
-      unit(c), ++i;  // Latin-1
-      continue;
-    }
-    unsigned cp = n == 1 ? c : n == 2 ? (c & 0x1F) : n == 3 ? (c & 0x0F) : (c & 0x07);
-    for (size_t k = 1; k < n; ++k) cp = cp << 6 | (static_cast<unsigned char>(utf8[i + k]) & 0x3F);
+    unsigned cp = 0;
+    const size_t n = utf8Sequence(utf8, i, cp);
+    if (n == 0) cp = static_cast<unsigned char>(utf8[i]);  // Latin-1
     if (cp >= 0x10000) {
       unit(0xD800 + ((cp - 0x10000) >> 10)), unit(0xDC00 + ((cp - 0x10000) & 0x3FF));
     } else {
       unit(cp);
     }
-    i += n;
+    i += n == 0 ? 1 : n;
   }
   return out;
 }

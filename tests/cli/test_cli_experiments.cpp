@@ -87,11 +87,19 @@ TEST(CliFig11, BadSettingsNameTheirFlags) {
                      {out + "/metrics.json"});
 }
 
+namespace {
+
+// One pose at a small size: a calibration run of seconds.
+std::string smallCalibration(const std::string& out) {
+  return "calibrate --out " + out +
+         " --poses centre --width 64 --holdout 20 --holdout-out-of-gamut 5 --lut-size 9 --direct-checks 0";
+}
+
+}  // namespace
+
 TEST(CliCalibrate, SmallRunExportsTheCorrectionThatEiaReads) {
   const std::string out = path("calibrate");
-  const CliResult r = runInim("calibrate --out " + out +
-                              " --poses centre --width 64 --holdout 20 --holdout-out-of-gamut 5 --lut-size 9"
-                              " --direct-checks 0");
+  const CliResult r = runInim(smallCalibration(out));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("hold-out in gamut"), std::string::npos) << r.output;
   for (const char* f : {"panel_correction.cube", "panel_correction.clf", "panel_correction.ocio", "calibration.json",
@@ -119,9 +127,7 @@ TEST(CliCalibrate, SmallRunExportsTheCorrectionThatEiaReads) {
 // exits 3 (not bad input's 2); the grade is in calibration.json.
 TEST(CliCalibrate, AMissedGradeExitsThreeWithItsOutputsWritten) {
   const std::string out = path("calibrate_grade");
-  const CliResult r = runInim("calibrate --out " + out +
-                              " --poses centre --width 64 --holdout 20 --holdout-out-of-gamut 5 --lut-size 9"
-                              " --direct-checks 0 --grade 0.0001,0.0002");
+  const CliResult r = runInim(smallCalibration(out) + " --grade 0.0001,0.0002");
   EXPECT_EQ(r.status, 3) << r.output;
   EXPECT_NE(r.output.find("inim: grade failed: the calibration misses its grade at centre"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("centre FAIL"), std::string::npos) << r.output;
